@@ -1,0 +1,75 @@
+# sph: incompressible SPH for viscoplastic flows (C11, Lua 5.4, Cairo)
+CC      ?= cc
+PKGS    := lua5.4 cairo
+PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS))
+PKG_LIBS   := $(shell pkg-config --libs $(PKGS))
+WARN    := -Wall -Wextra -Wshadow -Wstrict-prototypes -Wmissing-prototypes \
+           -Wmissing-declarations -Wundef -Wpointer-arith -Wwrite-strings -Wno-unknown-pragmas
+OPT     ?= -O2 -march=x86-64-v2
+CFLAGS  += -std=c11 -D_POSIX_C_SOURCE=200809L $(OPT) -g -fopenmp -fPIC $(WARN) $(PKG_CFLAGS) \
+           -DSPH_LUA_DIR='"$(abspath lua)"'
+LDLIBS  += $(PKG_LIBS) -lm -fopenmp
+ifeq ($(SANITIZE),1)
+  B       := build-san
+  CFLAGS  += -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+  LDFLAGS += -fsanitize=address,undefined
+else
+  B       := build
+endif
+
+ENGINE_SRC := $(filter-out src/main.c src/l%.c,$(wildcard src/*.c))
+BIND_SRC   := $(wildcard src/l*.c)
+ENGINE_OBJ := $(ENGINE_SRC:src/%.c=$(B)/%.o)
+BIND_OBJ   := $(BIND_SRC:src/%.c=$(B)/%.o)
+UNIT_SRC   := $(wildcard tests/unit/test_*.c)
+UNIT_BIN   := $(UNIT_SRC:tests/unit/%.c=$(B)/tests/%)
+
+all: $(B)/sph $(B)/libsph.a $(B)/sph.so $(UNIT_BIN)
+
+$(B)/%.o: src/%.c | $(B)
+	$(CC) $(CFLAGS) -MMD -MP -c $< -o $@
+
+$(B)/libsph.a: $(ENGINE_OBJ)
+	$(AR) rcs $@ $^
+
+$(B)/sph: $(B)/main.o $(BIND_OBJ) $(B)/libsph.a
+	$(CC) $(LDFLAGS) -o $@ $(B)/main.o $(BIND_OBJ) $(B)/libsph.a $(LDLIBS) -Wl,-E
+
+$(B)/sph.so: $(BIND_OBJ) $(B)/libsph.a
+	$(CC) $(LDFLAGS) -shared -o $@ $(BIND_OBJ) $(B)/libsph.a $(filter-out -llua5.4,$(LDLIBS))
+
+$(B)/tests/%: tests/unit/%.c tests/unit/unit.h $(B)/libsph.a | $(B)
+	@mkdir -p $(B)/tests
+	$(CC) $(CFLAGS) -Isrc -o $@ $< $(B)/libsph.a $(LDFLAGS) $(LDLIBS)
+
+$(B):
+	mkdir -p $(B)
+
+test: all
+	@sh tests/run.sh $(B)
+
+check:
+	$(MAKE) SANITIZE=1 OPT=-O1 all
+	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 sh tests/run.sh build-san
+
+bench: all
+	@sh scripts/bench.sh $(B)
+
+stability: all
+	$(B)/sph scripts/stability.lua
+
+PREFIX ?= /usr/local
+install: all
+	install -d $(PREFIX)/bin $(PREFIX)/lib $(PREFIX)/include $(PREFIX)/share/lua/5.4/sph
+	install -m 755 $(B)/sph $(PREFIX)/bin/sph
+	install -m 644 $(B)/libsph.a $(PREFIX)/lib/
+	install -m 644 src/sph.h $(PREFIX)/include/
+	install -d $(PREFIX)/lib/lua/5.4
+	install -m 755 $(B)/sph.so $(PREFIX)/lib/lua/5.4/sph.so
+	install -m 644 lua/sph/*.lua $(PREFIX)/share/lua/5.4/sph/
+
+clean:
+	rm -rf build build-san
+
+.PHONY: all test check bench stability install clean
+-include $(wildcard $(B)/*.d)

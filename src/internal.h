@@ -1,0 +1,161 @@
+/* The world object and the engine's internal interfaces (not part of the public API). */
+#ifndef SPH_INTERNAL_H
+#define SPH_INTERNAL_H
+
+#include "sph.h"
+
+#include <stdint.h>
+
+#define SPH_FLUID (-1) /* kind[] of a fluid particle; walls hold their plate index */
+#define SPH_MAX_MATERIALS 64
+#define SPH_MAX_PLATES 64
+#define SPH_MAX_LOADED 4 /* plates under a load law, coupled implicitly */
+
+typedef struct sph_plate {
+    double rect[4];      /* current rectangle (moves with the plate)                 */
+    int axis;            /* -1 fixed, 0 x, 1 y                                        */
+    sph_plate_mode mode;
+    double vel;          /* velocity along the axis this step (m/s)                  */
+    double vel_set;      /* velocity law value (VELOCITY mode)                        */
+    double load;         /* applied load along the axis (LOAD mode), whole sample    */
+    double mass;         /* whole-sample mass                                         */
+    int mass_set;        /* mass given by the caller                                 */
+    double force;        /* fluid force along the axis, whole sample                 */
+    double force_visc;   /* its viscous part (this step)                              */
+    int count;           /* real particles                                            */
+    int doubled;         /* straddles a symmetry plane: whole = 2 x simulated half   */
+    int face_side;       /* +1: fluid on the high side of the axis, -1: low, 0: ?    */
+} sph_plate;
+
+/* A compressed row-wise sparse matrix (CSR). */
+typedef struct sph_csr {
+    int n, nnz, cap;
+    int *start; /* n + 1 */
+    int *col;
+    double *val;
+    double *diag; /* n */
+} sph_csr;
+
+typedef struct sph_solve_result {
+    int iterations;
+    double residual; /* ||b - A x|| / ||b|| */
+    int converged;
+} sph_solve_result;
+
+/* Scratch and statistics of the Krylov solver. */
+typedef struct sph_solver {
+    int cap;
+    double *r, *z, *q, *d;
+} sph_solver;
+
+struct sph_world {
+    sph_params par;
+    double h, dx, eps2, mass0;
+    int threads;
+    char err[512];
+
+    /* particles: real ones in [0, n), ghosts (mirror / periodic images) in [n, n + ng) */
+    int n, ng, cap;
+    double *x, *y, *u, *v;     /* position, velocity                                */
+    double *us, *vs;           /* predicted velocity u*                             */
+    double *ax, *ay;           /* acceleration of the last step (dt force limit)    */
+    double *p, *rho, *m;       /* pressure, density, mass                           */
+    double *eta, *gd, *divr;   /* apparent viscosity, shear rate, position div      */
+    double *xs, *ys;           /* scratch for reordering / positions at step start */
+    int *kind, *mat, *id;      /* SPH_FLUID or plate index; material; stable id     */
+    int *src;                  /* ghosts: the real particle they image; reals: self */
+    signed char *gsx, *gsy;    /* ghosts: sign applied to u, v (mirror: -1)         */
+    unsigned char *surf;       /* fluid on the free surface (p = 0)                 */
+    unsigned char *active;     /* wall particle in the pressure system              */
+    int *row;                  /* unknown index in the pressure system or -1        */
+    double *psens[SPH_MAX_LOADED]; /* d p / d V of each loaded plate (warm starts)   */
+    int *perm, *iscratch;
+    int nfluid, next_id;
+
+    /* cell grid (cell size = kernel support) */
+    double gx0, gy0, cell;
+    int ncx, ncy, ncell_cap;
+    unsigned char *cellflag;   /* cells holding fluid (rows of the pressure system)  */
+    int *cell_start, *cell_items, *cell_of;
+    int cell_items_cap;
+
+    /* neighbour lists of rows (fluid and active walls), compressed */
+    int *nb_start;             /* n + 1                                             */
+    int *nb_j;
+    double *nb_gx, *nb_gy;     /* grad_i W_ij                                       */
+    double *nb_f;              /* r_ij . grad_i W_ij / (r_ij^2 + eps^2)             */
+    long nb_cap;
+    int *nb_count;
+
+    sph_material mats[SPH_MAX_MATERIALS];
+    int nmats;
+    sph_plate plates[SPH_MAX_PLATES];
+    int nplates;
+
+    /* pressure system */
+    sph_csr A;
+    sph_solver solver;
+    double *b, *sol;           /* right-hand side and solution, per row              */
+    double *bk[SPH_MAX_LOADED], *solk[SPH_MAX_LOADED]; /* loaded plates' sensitivities */
+    int rows_cap;
+    int nrows;
+    int *row_of;               /* row -> particle                                   */
+
+    double t, dt, wall_time;
+    long steps;
+    sph_stats st;
+    int prepared;
+    double dt_prev;
+};
+
+/* world.c */
+int sph_world_fail(sph_world *w, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+int sph_world_reserve(sph_world *w, int need);
+
+/* neighbours.c */
+int sph_neighbours_sort(sph_world *w);
+int sph_neighbours_build(sph_world *w);
+/* Brute-force neighbours of real particle i among all particles (for tests):
+ * writes indices into out (capacity cap), returns count. */
+int sph_neighbours_brute(const sph_world *w, int i, int *out, int cap);
+
+/* boundary.c: periodic wrap and ghost images */
+void sph_boundary_wrap(sph_world *w);
+int sph_boundary_ghosts(sph_world *w);
+void sph_boundary_sync(sph_world *w, double *a, double *b, int vector);
+
+/* plates.c */
+int sph_plate_fill(sph_world *w, const double rect[4], int axis);
+/* No-slip factor beta = 1 + dB/da (clamped) for fluid a and wall particle b. */
+double sph_plate_noslip(const sph_world *w, int a, int b);
+/* Velocity of wall particle b along x, y. */
+void sph_plate_wall_velocity(const sph_world *w, int b, double *vx, double *vy);
+void sph_plate_prepare(sph_world *w);
+void sph_plate_move(sph_world *w, int k, double dpos);
+int sph_plate_check_escape(sph_world *w);
+
+/* physics passes (viscous.c, pressure.c) */
+void sph_viscous_rheology(sph_world *w);
+void sph_viscous_explicit(sph_world *w, double dt);
+void sph_viscous_plate_forces(sph_world *w);
+int sph_pressure_solve(sph_world *w, double dt);
+void sph_pressure_correct(sph_world *w, double dt);
+
+/* timestep.c */
+double sph_timestep_compute(sph_world *w);
+
+/* solver.c */
+int sph_csr_reserve(sph_csr *a, int n, int nnz);
+void sph_csr_free(sph_csr *a);
+void sph_csr_matvec(const sph_csr *a, const double *x, double *y, int threads);
+int sph_solver_reserve(sph_solver *s, int n);
+void sph_solver_free(sph_solver *s);
+/* Jacobi-preconditioned conjugate gradients for SPD a: x holds the initial guess. */
+sph_solve_result sph_solver_pcg(sph_solver *s, const sph_csr *a, const double *b, double *x,
+                                double tol, int max_iter, int threads);
+
+#endif

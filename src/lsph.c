@@ -1,0 +1,710 @@
+/* The Lua binding: module "sph" over the C engine (src/sph.h). A thin layer: it checks
+ * arguments (errors name the argument), calls the engine, and turns engine errors into Lua
+ * errors. Lua runs at most once per step (plate laws) and once per output. */
+#include "sph.h"
+
+#include <lauxlib.h>
+#include <lualib.h>
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define WORLD "sph.world"
+#define PLATE "sph.plate"
+#define MATERIAL "sph.material"
+
+typedef struct {
+    sph_world *w;
+} lworld;
+
+typedef struct {
+    int index; /* plate index in the world */
+} lplate;
+
+/* ---- helpers -------------------------------------------------------------------- */
+
+/* Numeric field of the options table at idx, with a default; errors name the field. */
+static double opt_number(lua_State *L, int idx, const char *fname, const char *key, double def) {
+    double v = def;
+    int t = lua_getfield(L, idx, key);
+    if (t != LUA_TNIL) {
+        if (!lua_isnumber(L, -1))
+            luaL_error(L, "bad argument to '%s' (%s: number expected, got %s)", fname, key, luaL_typename(L, -1));
+        v = lua_tonumber(L, -1);
+    }
+    lua_pop(L, 1);
+    return v;
+}
+
+static int opt_present(lua_State *L, int idx, const char *key) {
+    int t = lua_getfield(L, idx, key);
+    lua_pop(L, 1);
+    return t != LUA_TNIL;
+}
+
+/* Reject unknown keys, so a misspelt option is an error, not a silent default. */
+static void opt_only(lua_State *L, int idx, const char *fname, const char *const *keys) {
+    lua_pushnil(L);
+    while (lua_next(L, idx)) {
+        lua_pop(L, 1);
+        int ok = 0;
+        if (lua_type(L, -1) == LUA_TSTRING) {
+            const char *k = lua_tostring(L, -1);
+            for (int i = 0; keys[i]; i++)
+                if (!strcmp(k, keys[i])) ok = 1;
+        }
+        if (!ok) {
+            luaL_Buffer b;
+            luaL_buffinit(L, &b);
+            for (int i = 0; keys[i]; i++) {
+                if (i) luaL_addstring(&b, ", ");
+                luaL_addstring(&b, keys[i]);
+            }
+            luaL_pushresult(&b);
+            luaL_error(L, "bad argument to '%s' (unknown option '%s'; options are %s)", fname,
+                       lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2) : luaL_typename(L, -2),
+                       lua_tostring(L, -1));
+        }
+    }
+}
+
+/* rect = {x0, y0, x1, y1} */
+static void opt_rect(lua_State *L, int idx, const char *fname, double r[4]) {
+    if (lua_getfield(L, idx, "rect") != LUA_TTABLE)
+        luaL_error(L, "bad argument to '%s' (rect: table {x0, y0, x1, y1} expected, got %s)", fname,
+                   luaL_typename(L, -1));
+    for (int k = 0; k < 4; k++) {
+        lua_rawgeti(L, -1, k + 1);
+        if (!lua_isnumber(L, -1))
+            luaL_error(L, "bad argument to '%s' (rect[%d]: number expected, got %s)", fname, k + 1,
+                       luaL_typename(L, -1));
+        r[k] = lua_tonumber(L, -1);
+        lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+    if (!(r[2] > r[0] && r[3] > r[1]))
+        luaL_error(L, "bad argument to '%s' (rect: need x0 < x1 and y0 < y1, got {%g, %g, %g, %g})",
+                   fname, r[0], r[1], r[2], r[3]);
+}
+
+static lworld *check_world(lua_State *L, int idx) {
+    lworld *lw = luaL_checkudata(L, idx, WORLD);
+    if (!lw->w) luaL_error(L, "attempt to use a closed sph.world");
+    return lw;
+}
+
+static int engine_error(lua_State *L, sph_world *w) { return luaL_error(L, "%s", sph_world_error(w)); }
+
+/* ---- materials ------------------------------------------------------------------ */
+
+static int new_material(lua_State *L, sph_model model, const char *fname) {
+    luaL_checktype(L, 1, LUA_TTABLE);
+    static const char *const nk[] = {"mu", 0};
+    static const char *const bk[] = {"mu", "tau0", "m", 0};
+    static const char *const hk[] = {"K", "n", "tau0", "m", 0};
+    sph_material mat;
+    memset(&mat, 0, sizeof mat);
+    mat.model = model;
+    const char *const *keys = model == SPH_NEWTONIAN ? nk : model == SPH_BINGHAM ? bk : hk;
+    opt_only(L, 1, fname, keys);
+    for (int i = 0; keys[i]; i++)
+        if (!opt_present(L, 1, keys[i]))
+            luaL_error(L, "bad argument to '%s' (%s: number expected, got no value)", fname, keys[i]);
+    mat.mu = opt_number(L, 1, fname, "mu", 0);
+    mat.tau0 = opt_number(L, 1, fname, "tau0", 0);
+    mat.m = opt_number(L, 1, fname, "m", 0);
+    mat.K = opt_number(L, 1, fname, "K", 0);
+    mat.n = opt_number(L, 1, fname, "n", 1);
+    const char *bad = sph_rheology_check(&mat);
+    if (bad) luaL_error(L, "bad argument to '%s' (%s)", fname, bad);
+    sph_material *ud = lua_newuserdatauv(L, sizeof *ud, 0);
+    *ud = mat;
+    luaL_setmetatable(L, MATERIAL);
+    return 1;
+}
+
+static int l_newtonian(lua_State *L) { return new_material(L, SPH_NEWTONIAN, "newtonian"); }
+static int l_bingham(lua_State *L) { return new_material(L, SPH_BINGHAM, "bingham"); }
+static int l_hb(lua_State *L) { return new_material(L, SPH_HERSCHEL_BULKLEY, "herschel_bulkley"); }
+
+static int mat_eta(lua_State *L) {
+    sph_material *m = luaL_checkudata(L, 1, MATERIAL);
+    double g = luaL_checknumber(L, 2);
+    luaL_argcheck(L, g >= 0, 2, "shear rate must be >= 0");
+    lua_pushnumber(L, sph_rheology_eta(m, g));
+    return 1;
+}
+
+static int mat_index(lua_State *L) {
+    sph_material *m = luaL_checkudata(L, 1, MATERIAL);
+    const char *k = luaL_checkstring(L, 2);
+    static const char *const models[] = {"newtonian", "bingham", "herschel_bulkley"};
+    if (!strcmp(k, "model")) lua_pushstring(L, models[m->model]);
+    else if (!strcmp(k, "mu")) lua_pushnumber(L, m->mu);
+    else if (!strcmp(k, "tau0")) lua_pushnumber(L, m->tau0);
+    else if (!strcmp(k, "m")) lua_pushnumber(L, m->m);
+    else if (!strcmp(k, "K")) lua_pushnumber(L, m->K);
+    else if (!strcmp(k, "n")) lua_pushnumber(L, m->n);
+    else if (!strcmp(k, "eta")) lua_pushcfunction(L, mat_eta);
+    else lua_pushnil(L);
+    return 1;
+}
+
+static int mat_tostring(lua_State *L) {
+    sph_material *m = luaL_checkudata(L, 1, MATERIAL);
+    if (m->model == SPH_NEWTONIAN) lua_pushfstring(L, "newtonian{mu = %f}", m->mu);
+    else if (m->model == SPH_BINGHAM)
+        lua_pushfstring(L, "bingham{mu = %f, tau0 = %f, m = %f}", m->mu, m->tau0, m->m);
+    else lua_pushfstring(L, "herschel_bulkley{K = %f, n = %f, tau0 = %f, m = %f}", m->K, m->n, m->tau0, m->m);
+    return 1;
+}
+
+/* ---- world ---------------------------------------------------------------------- */
+
+static void axis_range(lua_State *L, int idx, const char *fname, const char *what, const char *axis,
+                       int *on, double *lo, double *hi) {
+    int t = lua_getfield(L, idx, axis);
+    if (t == LUA_TTABLE) {
+        lua_rawgeti(L, -1, 1);
+        lua_rawgeti(L, -2, 2);
+        if (!lua_isnumber(L, -2) || !lua_isnumber(L, -1))
+            luaL_error(L, "bad argument to '%s' (%s.%s: {lo, hi} expected)", fname, what, axis);
+        *on = 1;
+        *lo = lua_tonumber(L, -2);
+        *hi = lua_tonumber(L, -1);
+        lua_pop(L, 2);
+    } else if (t != LUA_TNIL) {
+        luaL_error(L, "bad argument to '%s' (%s.%s: {lo, hi} expected, got %s)", fname, what, axis,
+                   luaL_typename(L, -1));
+    }
+    lua_pop(L, 1);
+}
+
+static int l_world(lua_State *L) {
+    static const char *const keys[] = {"dx", "h", "rho", "gravity", "viscosity", "shifting",
+                                       "cfl", "cvisc", "cforce", "dt_max", "periodic", "symmetry",
+                                       "threads", "tol", "max_iter", "surface", "density_relax", 0};
+    luaL_checktype(L, 1, LUA_TTABLE);
+    opt_only(L, 1, "world", keys);
+    sph_params p;
+    sph_params_default(&p);
+    if (!opt_present(L, 1, "dx")) luaL_error(L, "bad argument to 'world' (dx: number expected, got no value)");
+    p.dx = opt_number(L, 1, "world", "dx", 0);
+    p.h = opt_number(L, 1, "world", "h", 0);
+    p.rho0 = opt_number(L, 1, "world", "rho", 1);
+    p.shifting = opt_number(L, 1, "world", "shifting", 0);
+    p.cfl = opt_number(L, 1, "world", "cfl", p.cfl);
+    p.cvisc = opt_number(L, 1, "world", "cvisc", p.cvisc);
+    p.cforce = opt_number(L, 1, "world", "cforce", p.cforce);
+    p.dt_max = opt_number(L, 1, "world", "dt_max", 0);
+    p.threads = (int)opt_number(L, 1, "world", "threads", 0);
+    p.tol = opt_number(L, 1, "world", "tol", p.tol);
+    p.max_iter = (int)opt_number(L, 1, "world", "max_iter", p.max_iter);
+    p.surface_div = opt_number(L, 1, "world", "surface", p.surface_div);
+    p.density_relax = opt_number(L, 1, "world", "density_relax", p.density_relax);
+    if (!(p.dx > 0)) luaL_error(L, "bad argument to 'world' (dx: positive number expected, got %g)", p.dx);
+    if (p.threads < 0) luaL_error(L, "bad argument to 'world' (threads: number >= 1 expected)");
+    int t = lua_getfield(L, 1, "gravity");
+    if (t == LUA_TTABLE) {
+        for (int k = 0; k < 2; k++) {
+            lua_rawgeti(L, -1, k + 1);
+            if (!lua_isnumber(L, -1)) luaL_error(L, "bad argument to 'world' (gravity: {gx, gy} expected)");
+            p.gravity[k] = lua_tonumber(L, -1);
+            lua_pop(L, 1);
+        }
+    } else if (t != LUA_TNIL) {
+        luaL_error(L, "bad argument to 'world' (gravity: {gx, gy} expected, got %s)", luaL_typename(L, -1));
+    }
+    lua_pop(L, 1);
+    t = lua_getfield(L, 1, "viscosity");
+    if (t != LUA_TNIL) {
+        const char *v = lua_tostring(L, -1);
+        if (t != LUA_TSTRING || (strcmp(v, "explicit") && strcmp(v, "implicit")))
+            luaL_error(L, "bad argument to 'world' (viscosity: \"implicit\" or \"explicit\" expected)");
+        p.viscosity = strcmp(v, "implicit") ? SPH_VISC_EXPLICIT : SPH_VISC_IMPLICIT;
+    }
+    lua_pop(L, 1);
+    t = lua_getfield(L, 1, "periodic");
+    if (t == LUA_TTABLE) {
+        axis_range(L, lua_gettop(L), "world", "periodic", "x", &p.periodic[0], &p.period_lo[0], &p.period_hi[0]);
+        axis_range(L, lua_gettop(L), "world", "periodic", "y", &p.periodic[1], &p.period_lo[1], &p.period_hi[1]);
+    } else if (t != LUA_TNIL) {
+        luaL_error(L, "bad argument to 'world' (periodic: table {x = {lo, hi}} expected)");
+    }
+    lua_pop(L, 1);
+    t = lua_getfield(L, 1, "symmetry");
+    if (t == LUA_TTABLE) {
+        for (int a = 0; a < 2; a++) {
+            int tt = lua_getfield(L, -1, a == 0 ? "x" : "y");
+            if (tt == LUA_TNUMBER) {
+                p.symmetry[a] = 1;
+                p.sym_at[a] = lua_tonumber(L, -1);
+            } else if (tt != LUA_TNIL) {
+                luaL_error(L, "bad argument to 'world' (symmetry.%s: number expected)", a == 0 ? "x" : "y");
+            }
+            lua_pop(L, 1);
+        }
+    } else if (t != LUA_TNIL) {
+        luaL_error(L, "bad argument to 'world' (symmetry: table {x = x0} expected)");
+    }
+    lua_pop(L, 1);
+    if (p.viscosity == SPH_VISC_IMPLICIT)
+        luaL_error(L, "bad argument to 'world' (viscosity: \"implicit\" is not available in this "
+                      "version; use \"explicit\")");
+    if (p.shifting != 0)
+        luaL_error(L, "bad argument to 'world' (shifting: not available in this version; use 0)");
+
+    lworld *lw = lua_newuserdatauv(L, sizeof *lw, 1);
+    lw->w = 0;
+    luaL_setmetatable(L, WORLD);
+    lua_newtable(L); /* uservalue: [k] = law of plate k (function or nil), plates = {...} */
+    lua_setiuservalue(L, -2, 1);
+    char err[256];
+    lw->w = sph_world_new(&p, err, sizeof err);
+    if (!lw->w) luaL_error(L, "bad argument to 'world' (%s)", err);
+    return 1;
+}
+
+static int w_close(lua_State *L) {
+    lworld *lw = luaL_checkudata(L, 1, WORLD);
+    sph_world_free(lw->w);
+    lw->w = 0;
+    return 0;
+}
+
+static int w_tostring(lua_State *L) {
+    lworld *lw = luaL_checkudata(L, 1, WORLD);
+    if (!lw->w) lua_pushliteral(L, "sph.world (closed)");
+    else
+        lua_pushfstring(L, "sph.world (%d fluid particles, t = %f)", sph_world_nfluid(lw->w),
+                        sph_world_time(lw->w));
+    return 1;
+}
+
+static int w_fill(lua_State *L) {
+    lworld *lw = check_world(L, 1);
+    static const char *const keys[] = {"rect", "material", 0};
+    luaL_checktype(L, 2, LUA_TTABLE);
+    opt_only(L, 2, "fill", keys);
+    double r[4];
+    opt_rect(L, 2, "fill", r);
+    lua_getfield(L, 2, "material");
+    sph_material *m = luaL_testudata(L, -1, MATERIAL);
+    if (!m)
+        luaL_error(L, "bad argument to 'fill' (material: sph material expected (sph.bingham{...}, "
+                      "sph.newtonian{...}), got %s)", luaL_typename(L, -1));
+    int c = sph_world_fill(lw->w, r, m);
+    if (c < 0) return engine_error(L, lw->w);
+    lua_pushinteger(L, c);
+    return 1;
+}
+
+static int w_plate(lua_State *L) {
+    lworld *lw = check_world(L, 1);
+    static const char *const keys[] = {"rect", "axis", "mass", 0};
+    luaL_checktype(L, 2, LUA_TTABLE);
+    opt_only(L, 2, "plate", keys);
+    double r[4];
+    opt_rect(L, 2, "plate", r);
+    int axis = -1;
+    int t = lua_getfield(L, 2, "axis");
+    if (t != LUA_TNIL) {
+        const char *a = lua_tostring(L, -1);
+        if (t != LUA_TSTRING || (strcmp(a, "x") && strcmp(a, "y")))
+            luaL_error(L, "bad argument to 'plate' (axis: \"x\" or \"y\" expected)");
+        axis = a[0] == 'x' ? 0 : 1;
+    }
+    lua_pop(L, 1);
+    double mass = opt_number(L, 2, "plate", "mass", 0);
+    if (opt_present(L, 2, "mass") && !(mass > 0))
+        luaL_error(L, "bad argument to 'plate' (mass: positive number expected)");
+    int k = sph_world_plate(lw->w, r, axis);
+    if (k < 0) return engine_error(L, lw->w);
+    if (mass > 0) sph_plate_set_mass(lw->w, k, mass);
+    lplate *lp = lua_newuserdatauv(L, sizeof *lp, 1);
+    lp->index = k;
+    luaL_setmetatable(L, PLATE);
+    lua_pushvalue(L, 1); /* keep the world alive while the plate handle lives */
+    lua_setiuservalue(L, -2, 1);
+    /* remember the handle, to pass it to laws */
+    char key[32];
+    snprintf(key, sizeof key, "plate%d", k);
+    lua_getiuservalue(L, 1, 1);
+    lua_pushvalue(L, -2);
+    lua_setfield(L, -2, key);
+    lua_pop(L, 1);
+    return 1;
+}
+
+/* Evaluate the Lua plate laws at time t and hand their values to the engine. */
+static void apply_laws(lua_State *L, int widx, sph_world *w, double t) {
+    int np = sph_world_nplates(w);
+    lua_getiuservalue(L, widx, 1);
+    int uv = lua_gettop(L);
+    for (int k = 0; k < np; k++) {
+        if (lua_rawgeti(L, uv, k + 1) != LUA_TFUNCTION) {
+            lua_pop(L, 1);
+            continue;
+        }
+        char key[32];
+        snprintf(key, sizeof key, "plate%d", k);
+        lua_pushnumber(L, t);
+        lua_getfield(L, uv, key);
+        lua_call(L, 2, 1);
+        int isnum;
+        double v = lua_tonumberx(L, -1, &isnum);
+        sph_plate_mode mode = sph_plate_mode_of(w, k);
+        if (!isnum || !isfinite(v))
+            luaL_error(L, "plate %d: its %s law returned %s at t = %f (a finite number expected)", k + 1,
+                       mode == SPH_PLATE_LOAD ? "load" : "velocity",
+                       isnum ? "a non-finite number" : luaL_typename(L, -1), t);
+        if ((mode == SPH_PLATE_LOAD ? sph_plate_set_load(w, k, v) : sph_plate_set_velocity(w, k, v)) < 0)
+            engine_error(L, w);
+        lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+}
+
+static int w_step(lua_State *L) {
+    lworld *lw = check_world(L, 1);
+    double dt = luaL_optnumber(L, 2, 0);
+    apply_laws(L, 1, lw->w, sph_world_time(lw->w));
+    if (sph_world_step(lw->w, dt) < 0) return engine_error(L, lw->w);
+    lua_pushvalue(L, 1);
+    return 1;
+}
+
+static void progress(sph_world *w, double t_end, double wall0, int final) {
+    sph_stats s;
+    sph_world_stats(w, &s);
+    double el = omp_get_wtime() - wall0, t = sph_world_time(w);
+    double frac = t_end > 0 ? t / t_end : 1;
+    fprintf(stderr, "\r  t = %-10.5g %5.1f%%  step %-8ld dt = %-9.3g  p-iter %-4d  rho err %-8.2e  %6.1f s%s",
+            t, 100 * frac, sph_world_steps(w), sph_world_dt(w), s.solver_iterations, s.max_density_error,
+            el, final ? "\n" : "   ");
+    fflush(stderr);
+}
+
+static int w_run(lua_State *L) {
+    lworld *lw = check_world(L, 1);
+    static const char *const keys[] = {"until_t", "every", "each", "progress", "dt", 0};
+    luaL_checktype(L, 2, LUA_TTABLE);
+    opt_only(L, 2, "run", keys);
+    if (!opt_present(L, 2, "until_t")) luaL_error(L, "bad argument to 'run' (until_t: number expected, got no value)");
+    double until_t = opt_number(L, 2, "run", "until_t", 0);
+    double every = opt_number(L, 2, "run", "every", 0);
+    double fixed_dt = opt_number(L, 2, "run", "dt", 0);
+    if (!(every >= 0)) luaL_error(L, "bad argument to 'run' (every: number >= 0 expected)");
+    int t = lua_getfield(L, 2, "each");
+    if (t != LUA_TNIL && t != LUA_TFUNCTION)
+        luaL_error(L, "bad argument to 'run' (each: function expected, got %s)", luaL_typename(L, -1));
+    int each = lua_gettop(L);
+    int show = isatty(fileno(stderr));
+    if (lua_getfield(L, 2, "progress") != LUA_TNIL) show = show && lua_toboolean(L, -1);
+    lua_pop(L, 1);
+    sph_world *w = lw->w;
+    double t0 = sph_world_time(w), wall0 = omp_get_wtime(), last = wall0;
+    double eps = 1e-9 * (until_t > 0 ? until_t : 1);
+    long k = 1;
+    double next_out = every > 0 ? t0 + every : INFINITY;
+    while (sph_world_time(w) < until_t - eps) {
+        double now = sph_world_time(w);
+        apply_laws(L, 1, w, now);
+        double dt = fixed_dt > 0 ? fixed_dt : sph_world_next_dt(w);
+        double target = fmin(until_t, next_out);
+        if (now + dt > target - eps) dt = target - now;
+        else if (now + 1.5 * dt > target) dt = 0.5 * (target - now); /* no sliver steps */
+        if (sph_world_step(w, dt) < 0) {
+            if (show) fprintf(stderr, "\n");
+            return engine_error(L, w);
+        }
+        if (sph_world_time(w) >= next_out - eps) {
+            k++;
+            next_out = t0 + k * every;
+            if (each && !lua_isnil(L, each)) {
+                lua_pushvalue(L, each);
+                lua_pushvalue(L, 1);
+                lua_call(L, 1, 1);
+                int stop = lua_isboolean(L, -1) && !lua_toboolean(L, -1);
+                lua_pop(L, 1);
+                if (stop) break;
+            }
+        }
+        if (show && omp_get_wtime() - last > 0.25) {
+            progress(w, until_t, wall0, 0);
+            last = omp_get_wtime();
+        }
+    }
+    if (show) progress(w, until_t, wall0, 1);
+    lua_pushvalue(L, 1);
+    return 1;
+}
+
+static int w_stats(lua_State *L) {
+    lworld *lw = check_world(L, 1);
+    sph_stats s;
+    sph_world_stats(lw->w, &s);
+    lua_createtable(L, 0, 24);
+#define SETI(name, v) (lua_pushinteger(L, (lua_Integer)(v)), lua_setfield(L, -2, name))
+#define SETN(name, v) (lua_pushnumber(L, (v)), lua_setfield(L, -2, name))
+    SETI("particles", s.particles);
+    SETI("fluid", s.fluid);
+    SETI("wall", s.wall);
+    SETI("ghosts", s.ghosts);
+    SETI("surface", s.surface);
+    SETI("unknowns", s.unknowns);
+    SETI("solver_iterations", s.solver_iterations);
+    SETN("solver_residual", s.solver_residual);
+    SETI("solver_iterations_total", s.solver_iterations_total);
+    SETI("visc_iterations", s.visc_iterations);
+    SETN("visc_residual", s.visc_residual);
+    SETN("max_density_error", s.max_density_error);
+    SETN("kinetic_energy", s.kinetic_energy);
+    SETN("area", s.area);
+    SETN("max_speed", s.max_speed);
+    SETN("max_eta", s.max_eta);
+    SETI("yielded", s.yielded);
+    SETN("neighbours", s.neighbours_mean);
+    SETN("wall_time", s.wall_time);
+    SETN("t", sph_world_time(lw->w));
+    SETN("dt", sph_world_dt(lw->w));
+    SETI("steps", sph_world_steps(lw->w));
+#undef SETI
+#undef SETN
+    return 1;
+}
+
+static int w_field(lua_State *L) {
+    lworld *lw = check_world(L, 1);
+    const char *name = luaL_checkstring(L, 2);
+    int n = sph_world_nfluid(lw->w);
+    double *buf = lua_newuserdatauv(L, sizeof(double) * (size_t)(n > 0 ? n : 1), 0);
+    if (sph_world_field(lw->w, name, buf) < 0) {
+        luaL_Buffer b;
+        luaL_buffinit(L, &b);
+        const char *const *names = sph_world_field_names();
+        for (int i = 0; names[i]; i++) {
+            if (i) luaL_addstring(&b, ", ");
+            luaL_addstring(&b, names[i]);
+        }
+        luaL_pushresult(&b);
+        return luaL_error(L, "bad argument #1 to 'field' (unknown field '%s'; fields are %s)", name,
+                          lua_tostring(L, -1));
+    }
+    lua_createtable(L, n, 0);
+    for (int i = 0; i < n; i++) {
+        lua_pushnumber(L, buf[i]);
+        lua_rawseti(L, -2, i + 1);
+    }
+    return 1;
+}
+
+static int write_result(lua_State *L, sph_world *w, int rc) {
+    if (rc < 0) {
+        luaL_pushfail(L);
+        lua_pushstring(L, sph_world_error(w));
+        return 2;
+    }
+    lua_pushboolean(L, 1);
+    return 1;
+}
+
+static int w_write_csv(lua_State *L) {
+    lworld *lw = check_world(L, 1);
+    return write_result(L, lw->w, sph_world_write_csv(lw->w, luaL_checkstring(L, 2)));
+}
+
+static int w_write_vtk(lua_State *L) {
+    lworld *lw = check_world(L, 1);
+    return write_result(L, lw->w, sph_world_write_vtk(lw->w, luaL_checkstring(L, 2)));
+}
+
+static int w_index(lua_State *L) {
+    lworld *lw = check_world(L, 1);
+    const char *k = luaL_checkstring(L, 2);
+    if (!strcmp(k, "t")) lua_pushnumber(L, sph_world_time(lw->w));
+    else if (!strcmp(k, "dt")) lua_pushnumber(L, sph_world_dt(lw->w));
+    else if (!strcmp(k, "steps")) lua_pushinteger(L, sph_world_steps(lw->w));
+    else if (!strcmp(k, "dx")) lua_pushnumber(L, sph_world_params(lw->w)->dx);
+    else if (!strcmp(k, "h")) lua_pushnumber(L, sph_world_params(lw->w)->h);
+    else if (!strcmp(k, "rho")) lua_pushnumber(L, sph_world_params(lw->w)->rho0);
+    else {
+        luaL_getmetatable(L, WORLD);
+        lua_getfield(L, -1, "methods");
+        lua_getfield(L, -1, k);
+    }
+    return 1;
+}
+
+/* ---- plates --------------------------------------------------------------------- */
+
+static sph_world *plate_world(lua_State *L, int idx, lplate **out) {
+    lplate *lp = luaL_checkudata(L, idx, PLATE);
+    lua_getiuservalue(L, idx, 1);
+    lworld *lw = check_world(L, -1);
+    lua_pop(L, 1);
+    *out = lp;
+    return lw->w;
+}
+
+/* plate:velocity(v | f) / plate:load(F | f): numbers go to the engine, functions are kept
+ * in the world's uservalue and called once per step. */
+static int set_law(lua_State *L, int load) {
+    lplate *lp;
+    sph_world *w = plate_world(L, 1, &lp);
+    int t = lua_type(L, 2);
+    if (t != LUA_TNUMBER && t != LUA_TFUNCTION)
+        return luaL_argerror(L, 2, lua_pushfstring(L, "number or function of (t, plate) expected, got %s",
+                                                   luaL_typename(L, 2)));
+    if (sph_plate_axis(w, lp->index) < 0)
+        return luaL_error(L, "plate %d has no axis: it is fixed (give axis = \"x\" or \"y\" to move it)",
+                          lp->index + 1);
+    double v = t == LUA_TNUMBER ? lua_tonumber(L, 2) : 0.0;
+    if (t == LUA_TNUMBER && !isfinite(v)) return luaL_argerror(L, 2, "finite number expected");
+    if ((load ? sph_plate_set_load(w, lp->index, v) : sph_plate_set_velocity(w, lp->index, v)) < 0)
+        return engine_error(L, w);
+    lua_getiuservalue(L, 1, 1);
+    lua_getiuservalue(L, -1, 1);
+    if (t == LUA_TFUNCTION) lua_pushvalue(L, 2);
+    else lua_pushnil(L);
+    lua_rawseti(L, -2, lp->index + 1);
+    lua_settop(L, 1);
+    return 1;
+}
+
+static int p_velocity(lua_State *L) { return set_law(L, 0); }
+static int p_load(lua_State *L) { return set_law(L, 1); }
+
+static int p_index(lua_State *L) {
+    lplate *lp;
+    sph_world *w = plate_world(L, 1, &lp);
+    const char *k = luaL_checkstring(L, 2);
+    int i = lp->index;
+    if (!strcmp(k, "position")) lua_pushnumber(L, sph_plate_position(w, i));
+    else if (!strcmp(k, "velocity")) lua_pushnumber(L, sph_plate_velocity(w, i)); /* callable: see below */
+    else if (!strcmp(k, "force")) lua_pushnumber(L, sph_plate_force(w, i));
+    else if (!strcmp(k, "mass")) lua_pushnumber(L, sph_plate_mass(w, i));
+    else if (!strcmp(k, "index")) lua_pushinteger(L, i + 1);
+    else if (!strcmp(k, "axis")) {
+        int a = sph_plate_axis(w, i);
+        if (a < 0) lua_pushnil(L);
+        else lua_pushstring(L, a == 0 ? "x" : "y");
+    } else if (!strcmp(k, "mode")) {
+        static const char *const modes[] = {"fixed", "velocity", "load"};
+        lua_pushstring(L, modes[sph_plate_mode_of(w, i)]);
+    } else if (!strcmp(k, "rect")) {
+        double r[4];
+        sph_plate_rect(w, i, r);
+        lua_createtable(L, 4, 0);
+        for (int q = 0; q < 4; q++) {
+            lua_pushnumber(L, r[q]);
+            lua_rawseti(L, -2, q + 1);
+        }
+    } else if (!strcmp(k, "load")) lua_pushcfunction(L, p_load);
+    else lua_pushnil(L);
+    return 1;
+}
+
+static int p_newindex(lua_State *L) {
+    lplate *lp;
+    sph_world *w = plate_world(L, 1, &lp);
+    const char *k = luaL_checkstring(L, 2);
+    if (strcmp(k, "mass")) return luaL_error(L, "plate field '%s' cannot be set (only 'mass' can)", k);
+    double m = luaL_checknumber(L, 3);
+    if (sph_plate_set_mass(w, lp->index, m) < 0) return engine_error(L, w);
+    return 0;
+}
+
+static int p_tostring(lua_State *L) {
+    lplate *lp;
+    sph_world *w = plate_world(L, 1, &lp);
+    lua_pushfstring(L, "sph.plate %d (position %f, velocity %f, force %f)", lp->index + 1,
+                    sph_plate_position(w, lp->index), sph_plate_velocity(w, lp->index),
+                    sph_plate_force(w, lp->index));
+    return 1;
+}
+
+/* plate.velocity is a number, and plate:velocity(v) sets the law: the number's
+ * metatable gets a __call that accepts exactly that form and raises Lua's usual error
+ * for any other call of a number. */
+static int number_call(lua_State *L) {
+    if (lua_gettop(L) >= 2 && luaL_testudata(L, 2, PLATE)) {
+        lua_remove(L, 1);
+        return p_velocity(L);
+    }
+    return luaL_error(L, "attempt to call a number value");
+}
+
+/* ---- module --------------------------------------------------------------------- */
+
+static const luaL_Reg world_methods[] = {{"fill", w_fill},           {"plate", w_plate},
+                                         {"step", w_step},           {"run", w_run},
+                                         {"stats", w_stats},         {"field", w_field},
+                                         {"write_csv", w_write_csv}, {"write_vtk", w_write_vtk},
+                                         {"close", w_close},         {0, 0}};
+
+static const luaL_Reg funcs[] = {{"world", l_world},
+                                 {"newtonian", l_newtonian},
+                                 {"bingham", l_bingham},
+                                 {"herschel_bulkley", l_hb},
+                                 {0, 0}};
+
+int luaopen_sph(lua_State *L);
+
+int luaopen_sph(lua_State *L) {
+    luaL_checkversion(L);
+    if (luaL_newmetatable(L, WORLD)) {
+        luaL_newlib(L, world_methods);
+        lua_setfield(L, -2, "methods");
+        lua_pushcfunction(L, w_index);
+        lua_setfield(L, -2, "__index");
+        lua_pushcfunction(L, w_close);
+        lua_setfield(L, -2, "__gc");
+        lua_pushcfunction(L, w_close);
+        lua_setfield(L, -2, "__close");
+        lua_pushcfunction(L, w_tostring);
+        lua_setfield(L, -2, "__tostring");
+    }
+    lua_pop(L, 1);
+    if (luaL_newmetatable(L, PLATE)) {
+        lua_pushcfunction(L, p_index);
+        lua_setfield(L, -2, "__index");
+        lua_pushcfunction(L, p_newindex);
+        lua_setfield(L, -2, "__newindex");
+        lua_pushcfunction(L, p_tostring);
+        lua_setfield(L, -2, "__tostring");
+    }
+    lua_pop(L, 1);
+    if (luaL_newmetatable(L, MATERIAL)) {
+        lua_pushcfunction(L, mat_index);
+        lua_setfield(L, -2, "__index");
+        lua_pushcfunction(L, mat_tostring);
+        lua_setfield(L, -2, "__tostring");
+    }
+    lua_pop(L, 1);
+    /* callable numbers for plate:velocity(...) (kept if a metatable is already there) */
+    lua_pushnumber(L, 0);
+    if (!lua_getmetatable(L, -1)) {
+        lua_newtable(L);
+        lua_pushcfunction(L, number_call);
+        lua_setfield(L, -2, "__call");
+        lua_setmetatable(L, -2);
+    } else {
+        if (lua_getfield(L, -1, "__call") == LUA_TNIL) {
+            lua_pushcfunction(L, number_call);
+            lua_setfield(L, -3, "__call");
+        }
+        lua_pop(L, 2);
+    }
+    lua_pop(L, 1);
+
+    luaL_newlib(L, funcs);
+    lua_pushliteral(L, SPH_VERSION);
+    lua_setfield(L, -2, "version");
+    lua_pushinteger(L, omp_get_num_procs());
+    lua_setfield(L, -2, "cores");
+    return 1;
+}

@@ -1,0 +1,114 @@
+/* The sph host: runs a Lua case script with the sph module preloaded.
+ *   sph CASE.lua [name=value ...]
+ * name=value pairs reach the script as a table (numbers as numbers), both as the
+ * chunk's argument (local opt = ...) and as the global `params`; `arg` is as in lua.c. */
+#include "sph.h"
+
+#include <lauxlib.h>
+#include <lua.h>
+#include <lualib.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int luaopen_sph(lua_State *L);
+
+static void usage(FILE *f) {
+    fprintf(f,
+            "usage: sph CASE.lua [name=value ...]\n"
+            "       sph --help | --version\n"
+            "Runs a Lua case script with the sph module (incompressible SPH for viscoplastic\n"
+            "flows). name=value pairs reach the script as a table: local opt = ... (numbers as\n"
+            "numbers, true/false as booleans, anything else as strings).\n");
+}
+
+static int traceback(lua_State *L) {
+    const char *msg = lua_tostring(L, 1);
+    if (!msg) msg = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
+    luaL_traceback(L, L, msg, 1);
+    return 1;
+}
+
+/* package.path: the project's lua/ (or $SPH_LUA_DIR) and the script's folder first. */
+static void set_path(lua_State *L, const char *script) {
+    const char *dir = getenv("SPH_LUA_DIR");
+    if (!dir) dir = SPH_LUA_DIR;
+    char sdir[4096];
+    snprintf(sdir, sizeof sdir, "%s", script);
+    char *slash = strrchr(sdir, '/');
+    if (slash) *slash = 0;
+    else snprintf(sdir, sizeof sdir, ".");
+    lua_getglobal(L, "package");
+    lua_getfield(L, -1, "path");
+    lua_pushfstring(L, "%s/?.lua;%s/?/init.lua;%s/?.lua;%s", dir, dir, sdir, lua_tostring(L, -1));
+    lua_setfield(L, -3, "path");
+    lua_pop(L, 2);
+}
+
+static void push_value(lua_State *L, const char *v) {
+    if (!strcmp(v, "true")) lua_pushboolean(L, 1);
+    else if (!strcmp(v, "false")) lua_pushboolean(L, 0);
+    else if (!lua_stringtonumber(L, v)) lua_pushstring(L, v);
+}
+
+static int run(lua_State *L) {
+    int argc = (int)lua_tointeger(L, 1);
+    char **argv = lua_touserdata(L, 2);
+    luaL_openlibs(L);
+    luaL_requiref(L, "sph", luaopen_sph, 0);
+    lua_pop(L, 1);
+    set_path(L, argv[1]);
+    lua_createtable(L, argc, 1); /* arg, as in lua.c */
+    for (int i = 0; i < argc; i++) {
+        lua_pushstring(L, argv[i]);
+        lua_rawseti(L, -2, i - 1);
+    }
+    lua_setglobal(L, "arg");
+    lua_newtable(L); /* params */
+    for (int i = 2; i < argc; i++) {
+        const char *eq = strchr(argv[i], '=');
+        if (!eq || eq == argv[i])
+            return luaL_error(L, "argument '%s': name=value expected", argv[i]);
+        lua_pushlstring(L, argv[i], (size_t)(eq - argv[i]));
+        push_value(L, eq + 1);
+        lua_settable(L, -3);
+    }
+    lua_pushvalue(L, -1);
+    lua_setglobal(L, "params");
+    if (luaL_loadfile(L, argv[1]) != LUA_OK) return lua_error(L);
+    lua_insert(L, -2);
+    lua_call(L, 1, 0);
+    return 0;
+}
+
+int main(int argc, char **argv) {
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
+        usage(stdout);
+        return 0;
+    }
+    if (!strcmp(argv[1], "--version")) {
+        printf("sph %s (%s)\n", SPH_VERSION, LUA_RELEASE);
+        return 0;
+    }
+    lua_State *L = luaL_newstate();
+    if (!L) {
+        fprintf(stderr, "sph: cannot create a Lua state (out of memory)\n");
+        return 1;
+    }
+    lua_pushcfunction(L, traceback);
+    lua_pushcfunction(L, run);
+    lua_pushinteger(L, argc);
+    lua_pushlightuserdata(L, argv);
+    int rc = lua_pcall(L, 2, 0, 1);
+    if (rc != LUA_OK) {
+        fprintf(stderr, "sph: %s\n", lua_tostring(L, -1));
+        lua_close(L);
+        return 1;
+    }
+    lua_close(L);
+    return 0;
+}

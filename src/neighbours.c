@@ -1,0 +1,240 @@
+/* Neighbour search: a cell grid of cell size = kernel support (3h), particles sorted by
+ * cell with a stable counting sort (memory locality; every per-particle array is permuted
+ * together), and compressed neighbour lists built once per step for the rows of the
+ * pressure system (fluid particles and the wall particles near fluid). Each pair stores
+ * grad_i W_ij and r_ij . grad_i W_ij / (r^2 + eps^2), reused by every pass of the step. */
+#include "internal.h"
+#include "kernel.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int ensure_int(int **p, int *cap, int need) {
+    if (need <= *cap) return 0;
+    int c = need + need / 4 + 64;
+    int *q = realloc(*p, sizeof(int) * (size_t)c);
+    if (!q) return -1;
+    *p = q;
+    *cap = c;
+    return 0;
+}
+
+static inline int cell_coord(double v, double o, double cell, int nc) {
+    int c = (int)floor((v - o) / cell);
+    return c < 0 ? 0 : (c >= nc ? nc - 1 : c);
+}
+
+/* Grid over the real particles' bounding box, grown by one cell on every side so that
+ * ghosts (within one support of a mirror or periodic edge) fall inside. */
+static int make_grid(sph_world *w) {
+    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    for (int i = 0; i < w->n; i++) {
+        if (w->x[i] < x0) x0 = w->x[i];
+        if (w->x[i] > x1) x1 = w->x[i];
+        if (w->y[i] < y0) y0 = w->y[i];
+        if (w->y[i] > y1) y1 = w->y[i];
+    }
+    if (!(isfinite(x0) && isfinite(x1) && isfinite(y0) && isfinite(y1)))
+        return sph_world_fail(w, "non-finite particle position at step %ld (t = %g)", w->steps,
+                              w->t);
+    double cell = SPH_KERNEL_SUPPORT * w->h;
+    w->cell = cell;
+    w->gx0 = x0 - 1.5 * cell;
+    w->gy0 = y0 - 1.5 * cell;
+    double nx = floor((x1 - x0) / cell) + 4, ny = floor((y1 - y0) / cell) + 4;
+    if (nx * ny > 64.0 * w->n + 4e6) {
+        /* Find the particle farthest from the others' median to name it. */
+        return sph_world_fail(w,
+                              "the scene grew to %.3g x %.3g (from x = %g..%g, y = %g..%g) at "
+                              "step %ld, t = %g: a particle has escaped",
+                              x1 - x0, y1 - y0, x0, x1, y0, y1, w->steps, w->t);
+    }
+    w->ncx = (int)nx;
+    w->ncy = (int)ny;
+    int ncell = w->ncx * w->ncy;
+    if (ncell + 1 > w->ncell_cap) {
+        int cap = ncell + 1 + ncell / 4 + 64;
+        int *cs = realloc(w->cell_start, sizeof(int) * (size_t)cap);
+        if (cs) w->cell_start = cs;
+        unsigned char *cf = realloc(w->cellflag, (size_t)cap);
+        if (cf) w->cellflag = cf;
+        if (!cs || !cf) return sph_world_fail(w, "out of memory (%d cells)", ncell);
+        w->ncell_cap = cap;
+    }
+    return 0;
+}
+
+/* Permute every persistent per-particle array by perm (new i <- old perm[i]). */
+static void permute(sph_world *w, const int *perm) {
+    int n = w->n;
+    double *dscratch = w->xs;
+    double **darr[] = {&w->x, &w->y, &w->u, &w->v, &w->ax, &w->ay, &w->p, &w->rho, &w->m,
+                       &w->eta, &w->gd, &w->psens[0], &w->psens[1], &w->psens[2], &w->psens[3]};
+    for (size_t a = 0; a < sizeof darr / sizeof *darr; a++) {
+        double *arr = *darr[a];
+        for (int i = 0; i < n; i++) dscratch[i] = arr[perm[i]];
+        memcpy(arr, dscratch, sizeof(double) * (size_t)n);
+    }
+    int *iscratch = w->iscratch;
+    int **iarr[] = {&w->kind, &w->mat, &w->id};
+    for (size_t a = 0; a < sizeof iarr / sizeof *iarr; a++) {
+        int *arr = *iarr[a];
+        for (int i = 0; i < n; i++) iscratch[i] = arr[perm[i]];
+        memcpy(arr, iscratch, sizeof(int) * (size_t)n);
+    }
+    unsigned char *c = (unsigned char *)w->iscratch;
+    for (int i = 0; i < n; i++) c[i] = w->surf[perm[i]];
+    memcpy(w->surf, c, (size_t)n);
+}
+
+int sph_neighbours_sort(sph_world *w) {
+    if (make_grid(w)) return -1;
+    int n = w->n, ncell = w->ncx * w->ncy;
+    int *cs = w->cell_start;
+    memset(cs, 0, sizeof(int) * (size_t)(ncell + 1));
+    for (int i = 0; i < n; i++) {
+        int c = cell_coord(w->y[i], w->gy0, w->cell, w->ncy) * w->ncx +
+                cell_coord(w->x[i], w->gx0, w->cell, w->ncx);
+        w->cell_of[i] = c;
+        cs[c + 1]++;
+    }
+    for (int c = 0; c < ncell; c++) cs[c + 1] += cs[c];
+    for (int i = 0; i < n; i++) w->perm[cs[w->cell_of[i]]++] = i;
+    permute(w, w->perm);
+    return 0;
+}
+
+/* Bin every particle, ghosts included, into the grid (stable: index order per cell). */
+static int bin_all(sph_world *w) {
+    int nt = w->n + w->ng, ncell = w->ncx * w->ncy;
+    int *cs = w->cell_start;
+    if (ensure_int(&w->cell_items, &w->cell_items_cap, nt)) return sph_world_fail(w, "out of memory");
+    memset(cs, 0, sizeof(int) * (size_t)(ncell + 1));
+    for (int i = 0; i < nt; i++) {
+        int c = cell_coord(w->y[i], w->gy0, w->cell, w->ncy) * w->ncx +
+                cell_coord(w->x[i], w->gx0, w->cell, w->ncx);
+        w->cell_of[i] = c;
+        cs[c + 1]++;
+    }
+    for (int c = 0; c < ncell; c++) cs[c + 1] += cs[c];
+    for (int i = 0; i < nt; i++) w->cell_items[cs[w->cell_of[i]]++] = i;
+    for (int c = ncell; c > 0; c--) cs[c] = cs[c - 1];
+    cs[0] = 0;
+    return 0;
+}
+
+/* Rows: fluid particles, and wall particles in the 3 x 3 cells around any fluid particle
+ * (real or ghost): a superset of the walls within the support of fluid. */
+static void mark_rows(sph_world *w) {
+    int n = w->n, nt = n + w->ng, ncx = w->ncx, ncy = w->ncy;
+    int ncell = ncx * ncy;
+    unsigned char *flag = w->cellflag;
+    memset(flag, 0, (size_t)ncell);
+    for (int i = 0; i < nt; i++)
+        if (w->kind[i] == SPH_FLUID) flag[w->cell_of[i]] = 1;
+    for (int i = 0; i < n; i++) {
+        if (w->kind[i] == SPH_FLUID) {
+            w->active[i] = 1;
+            continue;
+        }
+        int c = w->cell_of[i], cx = c % ncx, cy = c / ncx, on = 0;
+        for (int yy = cy - 1; yy <= cy + 1 && !on; yy++)
+            for (int xx = cx - 1; xx <= cx + 1; xx++)
+                if (xx >= 0 && yy >= 0 && xx < ncx && yy < ncy && flag[yy * ncx + xx]) {
+                    on = 1;
+                    break;
+                }
+        w->active[i] = (unsigned char)on;
+    }
+}
+
+/* Visit the candidate neighbours of particle i: calls body with j for every particle in
+ * the 3 x 3 block of cells. */
+#define FOR_CANDIDATES(w, i, j, ...)                                                      \
+    do {                                                                                  \
+        int c_ = (w)->cell_of[i], cx_ = c_ % (w)->ncx, cy_ = c_ / (w)->ncx;               \
+        int ya_ = cy_ > 0 ? cy_ - 1 : 0, yb_ = cy_ + 1 < (w)->ncy ? cy_ + 1 : cy_;        \
+        int xa_ = cx_ > 0 ? cx_ - 1 : 0, xb_ = cx_ + 1 < (w)->ncx ? cx_ + 1 : cx_;        \
+        for (int yy_ = ya_; yy_ <= yb_; yy_++) {                                          \
+            int k0_ = (w)->cell_start[yy_ * (w)->ncx + xa_];                              \
+            int k1_ = (w)->cell_start[yy_ * (w)->ncx + xb_ + 1];                          \
+            for (int k_ = k0_; k_ < k1_; k_++) {                                          \
+                int j = (w)->cell_items[k_];                                              \
+                __VA_ARGS__;                                                              \
+            }                                                                             \
+        }                                                                                 \
+    } while (0)
+
+int sph_neighbours_build(sph_world *w) {
+    if (bin_all(w)) return -1;
+    mark_rows(w);
+    int n = w->n, threads = w->threads;
+    double h = w->h, r2max = SPH_KERNEL_SUPPORT * SPH_KERNEL_SUPPORT * h * h, eps2 = w->eps2;
+    int *cnt = w->nb_count;
+
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
+    for (int i = 0; i < n; i++) {
+        int c = 0;
+        if (w->active[i]) {
+            double xi = w->x[i], yi = w->y[i];
+            FOR_CANDIDATES(w, i, j, {
+                double dx = xi - w->x[j], dy = yi - w->y[j];
+                c += (dx * dx + dy * dy < r2max) & (j != i);
+            });
+        }
+        cnt[i] = c;
+    }
+    w->nb_start[0] = 0;
+    for (int i = 0; i < n; i++) w->nb_start[i + 1] = w->nb_start[i] + cnt[i];
+    long total = w->nb_start[n];
+    if (total > w->nb_cap) {
+        long cap = total + total / 4 + 1024;
+        int *j = realloc(w->nb_j, sizeof(int) * (size_t)cap);
+        if (j) w->nb_j = j;
+        double *a = realloc(w->nb_gx, sizeof(double) * (size_t)cap);
+        if (a) w->nb_gx = a;
+        double *b = realloc(w->nb_gy, sizeof(double) * (size_t)cap);
+        if (b) w->nb_gy = b;
+        double *f = realloc(w->nb_f, sizeof(double) * (size_t)cap);
+        if (f) w->nb_f = f;
+        if (!j || !a || !b || !f) return sph_world_fail(w, "out of memory (%ld neighbour pairs)", total);
+        w->nb_cap = cap;
+    }
+
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
+    for (int i = 0; i < n; i++) {
+        if (!w->active[i]) continue;
+        int k = w->nb_start[i];
+        double xi = w->x[i], yi = w->y[i], divr = 0.0;
+        FOR_CANDIDATES(w, i, j, {
+            double dx = xi - w->x[j], dy = yi - w->y[j], r2 = dx * dx + dy * dy;
+            if (r2 < r2max && j != i) {
+                double r = sqrt(r2);
+                double dw = sph_kernel_deriv(r, h);
+                double g = r > 0.0 ? dw / r : 0.0;
+                w->nb_j[k] = j;
+                w->nb_gx[k] = g * dx;
+                w->nb_gy[k] = g * dy;
+                w->nb_f[k] = r * dw / (r2 + eps2);
+                divr -= w->m[j] / w->rho[j] * r * dw;
+                k++;
+            }
+        });
+        w->divr[i] = divr;
+    }
+    return 0;
+}
+
+int sph_neighbours_brute(const sph_world *w, int i, int *out, int cap) {
+    double r2max = SPH_KERNEL_SUPPORT * SPH_KERNEL_SUPPORT * w->h * w->h;
+    int c = 0;
+    for (int j = 0; j < w->n + w->ng; j++) {
+        double dx = w->x[i] - w->x[j], dy = w->y[i] - w->y[j];
+        if (j != i && dx * dx + dy * dy < r2max) {
+            if (c < cap) out[c] = j;
+            c++;
+        }
+    }
+    return c;
+}

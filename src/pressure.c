@@ -1,0 +1,318 @@
+/* The pressure Poisson equation and the projection (Cummins & Rudman 1999; Shao & Lo 2003).
+ *   div((1/rho) grad p)_i = [ -dt sum_j m_j (u*_i - u*_j) . grad_i W_ij
+ *                             + gamma (rho0 - rho_i) ] / (rho0 dt^2)
+ * gamma = 1 is the paper's density-invariant source (rho0 - rho*_i) / (rho0 dt^2).
+ * Laplacian: sum_j m_j 8 / (rho_i + rho_j)^2 (p_i - p_j) F_ij. Rows: fluid particles and
+ * the wall particles near fluid; free-surface particles are held at p = 0. Each row is
+ * scaled by m_i so that the matrix is symmetric positive definite; ghosts map to the
+ * unknown of the particle they image.
+ * Plates under a load are coupled implicitly: the pressure is linear in their velocities,
+ * p = p0 + sum_k V_k p_k, so one extra solve per loaded plate gives dp/dV and the plate
+ * equations M (V - V^n) / dt = F_load + F_fluid(p(V)) become a small dense system. This is
+ * stable whatever the plate's mass against the fluid's added mass. */
+#include "internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int reserve_rows(sph_world *w, int nrows) {
+    if (nrows <= w->rows_cap && w->b) return 0;
+    int cap = nrows + nrows / 4 + 64;
+    double **arr[2 + 2 * SPH_MAX_LOADED];
+    int na = 0;
+    arr[na++] = &w->b;
+    arr[na++] = &w->sol;
+    for (int k = 0; k < SPH_MAX_LOADED; k++) {
+        arr[na++] = &w->bk[k];
+        arr[na++] = &w->solk[k];
+    }
+    for (int a = 0; a < na; a++) {
+        double *q = realloc(*arr[a], sizeof(double) * (size_t)cap);
+        if (!q) return sph_world_fail(w, "out of memory (%d pressure unknowns)", nrows);
+        *arr[a] = q;
+    }
+    int *ro = realloc(w->row_of, sizeof(int) * (size_t)cap);
+    if (!ro) return sph_world_fail(w, "out of memory (%d pressure unknowns)", nrows);
+    w->row_of = ro;
+    w->rows_cap = cap;
+    return 0;
+}
+
+/* Velocity of particle j as the source term sees it; loaded plates count as still (their
+ * velocity enters through the sensitivities). */
+static inline void src_velocity(const sph_world *w, int j, double *vx, double *vy) {
+    if (w->kind[j] == SPH_FLUID) {
+        *vx = w->us[j];
+        *vy = w->vs[j];
+        return;
+    }
+    const sph_plate *pl = &w->plates[w->kind[j]];
+    if (pl->mode == SPH_PLATE_LOAD) {
+        *vx = *vy = 0.0;
+        return;
+    }
+    sph_plate_wall_velocity(w, j, vx, vy);
+}
+
+/* d(velocity of j)/d V_k */
+static inline void sens_velocity(const sph_world *w, int j, int k, double *vx, double *vy) {
+    *vx = *vy = 0.0;
+    if (w->kind[j] != k) return;
+    const sph_plate *pl = &w->plates[k];
+    if (pl->axis == 0) *vx = w->gsx[j];
+    else if (pl->axis == 1) *vy = w->gsy[j];
+}
+
+/* Fluid pressure force on every plate along its axis, for a pressure field p (ghosts
+ * synced): F = sum_{a fluid, B in plate} m_a m_B (p_a / rho_a^2 + p_B / rho_B^2) grad_a W. */
+static void plate_pressure_force(const sph_world *w, const double *p, double *out) {
+    int n = w->n, np = w->nplates;
+    double f[SPH_MAX_PLATES] = {0};
+#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : f[:np])
+    for (int i = 0; i < n; i++) {
+        if (w->kind[i] != SPH_FLUID) continue;
+        double pi = p[i] / (w->rho[i] * w->rho[i]);
+        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
+            int j = w->nb_j[k], pk = w->kind[j];
+            if (pk == SPH_FLUID || w->plates[pk].axis < 0) continue;
+            double c = w->m[i] * w->m[j] * (pi + p[j] / (w->rho[j] * w->rho[j]));
+            f[pk] += w->plates[pk].axis == 0 ? c * w->nb_gx[k] * w->gsx[j] : c * w->nb_gy[k] * w->gsy[j];
+        }
+    }
+    for (int k = 0; k < np; k++) out[k] = f[k] * (w->plates[k].doubled ? 2.0 : 1.0);
+}
+
+static void scatter(sph_world *w, const double *sol, double *p) {
+    for (int i = 0; i < w->n; i++) p[i] = 0.0;
+    for (int r = 0; r < w->nrows; r++) p[w->row_of[r]] = sol[r];
+    sph_boundary_sync(w, p, 0, 0);
+}
+
+/* Small dense solve (Gaussian elimination with partial pivoting), n <= SPH_MAX_LOADED. */
+static int dense_solve(int n, double a[SPH_MAX_LOADED][SPH_MAX_LOADED], double *x) {
+    for (int c = 0; c < n; c++) {
+        int piv = c;
+        for (int r = c + 1; r < n; r++)
+            if (fabs(a[r][c]) > fabs(a[piv][c])) piv = r;
+        if (a[piv][c] == 0.0) return -1;
+        if (piv != c) {
+            for (int k = 0; k < n; k++) {
+                double t = a[c][k];
+                a[c][k] = a[piv][k];
+                a[piv][k] = t;
+            }
+            double t = x[c];
+            x[c] = x[piv];
+            x[piv] = t;
+        }
+        for (int r = c + 1; r < n; r++) {
+            double f = a[r][c] / a[c][c];
+            for (int k = c; k < n; k++) a[r][k] -= f * a[c][k];
+            x[r] -= f * x[c];
+        }
+    }
+    for (int r = n - 1; r >= 0; r--) {
+        for (int k = r + 1; k < n; k++) x[r] -= a[r][k] * x[k];
+        x[r] /= a[r][r];
+    }
+    return 0;
+}
+
+int sph_pressure_solve(sph_world *w, double dt) {
+    int n = w->n, threads = w->threads;
+    double rho0 = w->par.rho0, gamma = w->par.density_relax;
+
+    /* loaded plates */
+    int loaded[SPH_MAX_LOADED], K = 0;
+    for (int k = 0; k < w->nplates; k++)
+        if (w->plates[k].mode == SPH_PLATE_LOAD) {
+            if (K == SPH_MAX_LOADED)
+                return sph_world_fail(w, "at most %d plates can be under a load law", SPH_MAX_LOADED);
+            loaded[K++] = k;
+        }
+
+    /* unknowns */
+    int nrows = 0, nsurf = 0, pin = -1;
+    for (int i = 0; i < n; i++) {
+        if (w->kind[i] == SPH_FLUID && w->surf[i]) nsurf++;
+    }
+    if (nsurf == 0) { /* closed or periodic domain: pressure is defined up to a constant */
+        for (int i = 0; i < n && pin < 0; i++)
+            if (w->kind[i] == SPH_FLUID) pin = i;
+    }
+    for (int i = 0; i < n; i++) {
+        int unknown = w->active[i] && !(w->kind[i] == SPH_FLUID && w->surf[i]) && i != pin;
+        w->row[i] = unknown ? nrows++ : -1;
+    }
+    if (reserve_rows(w, nrows)) return -1;
+    for (int i = 0; i < n; i++)
+        if (w->row[i] >= 0) w->row_of[w->row[i]] = i;
+    w->nrows = nrows;
+
+    /* structure: one diagonal plus one entry per neighbour with an unknown */
+    sph_csr *A = &w->A;
+    if (sph_csr_reserve(A, nrows, 1)) return sph_world_fail(w, "out of memory");
+    A->start[0] = 0;
+    for (int r = 0; r < nrows; r++) {
+        int i = w->row_of[r], c = 1;
+        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
+            int s = w->src[w->nb_j[k]];
+            c += s != i && w->row[s] >= 0;
+        }
+        A->start[r + 1] = A->start[r] + c;
+    }
+    if (sph_csr_reserve(A, nrows, A->start[nrows]) || sph_solver_reserve(&w->solver, nrows))
+        return sph_world_fail(w, "out of memory (pressure matrix)");
+
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (int r = 0; r < nrows; r++) {
+        int i = w->row_of[r], e = A->start[r] + 1;
+        double mi = w->m[i], rhoi = w->rho[i], diag = 0.0, div = 0.0;
+        double sens[SPH_MAX_LOADED] = {0};
+        double wi_x, wi_y;
+        src_velocity(w, i, &wi_x, &wi_y);
+        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
+            int j = w->nb_j[k], s = w->src[j];
+            double rs = rhoi + w->rho[j];
+            double c = mi * w->m[j] * 8.0 / (rs * rs) * (-w->nb_f[k]);
+            double wj_x, wj_y;
+            src_velocity(w, j, &wj_x, &wj_y);
+            div += w->m[j] * ((wi_x - wj_x) * w->nb_gx[k] + (wi_y - wj_y) * w->nb_gy[k]);
+            for (int q = 0; q < K; q++) {
+                double ax, ay, bx, by;
+                sens_velocity(w, i, loaded[q], &ax, &ay);
+                sens_velocity(w, j, loaded[q], &bx, &by);
+                sens[q] += w->m[j] * ((ax - bx) * w->nb_gx[k] + (ay - by) * w->nb_gy[k]);
+            }
+            if (s == i) continue;
+            if (w->row[s] >= 0) {
+                diag += c;
+                A->col[e] = w->row[s];
+                A->val[e] = -c;
+                e++;
+            } else if (w->kind[s] == SPH_FLUID) {
+                diag += c; /* Dirichlet neighbour, p = 0 */
+            }
+        }
+        A->col[A->start[r]] = r;
+        if (diag <= 0.0) diag = mi; /* isolated: p = 0 */
+        A->val[A->start[r]] = diag;
+        A->diag[r] = diag;
+        double relax = w->kind[i] == SPH_FLUID ? gamma * (rho0 - rhoi) : 0.0;
+        /* A = -Laplacian (scaled by m_i): b = -m_i s_i */
+        w->b[r] = -mi * (-dt * div + relax) / (rho0 * dt * dt);
+        for (int q = 0; q < K; q++) w->bk[q][r] = -mi * (-dt * sens[q]) / (rho0 * dt * dt);
+        /* warm starts */
+        double p0 = w->p[i];
+        for (int q = 0; q < K; q++) {
+            p0 -= w->plates[loaded[q]].vel * w->psens[q][i];
+            w->solk[q][r] = w->psens[q][i];
+        }
+        w->sol[r] = p0;
+    }
+
+    double tol = w->par.tol;
+    int iters = 0;
+    sph_solve_result res = sph_solver_pcg(&w->solver, A, w->b, w->sol, tol, w->par.max_iter, threads);
+    iters += res.iterations;
+    if (!res.converged)
+        return sph_world_fail(w,
+                              "pressure solver did not converge at step %ld (t = %g, dt = %g): "
+                              "relative residual %.3g after %d iterations (tolerance %g, %d unknowns)",
+                              w->steps, w->t, dt, res.residual, res.iterations, tol, nrows);
+    double resid = res.residual;
+    for (int q = 0; q < K; q++) {
+        sph_solve_result rk = sph_solver_pcg(&w->solver, A, w->bk[q], w->solk[q], tol, w->par.max_iter, threads);
+        iters += rk.iterations;
+        if (!rk.converged)
+            return sph_world_fail(w,
+                                  "pressure solver (plate %d sensitivity) did not converge at step "
+                                  "%ld (t = %g): residual %.3g after %d iterations",
+                                  loaded[q] + 1, w->steps, w->t, rk.residual, rk.iterations);
+    }
+    w->st.solver_iterations = iters;
+    w->st.solver_residual = resid;
+    w->st.solver_iterations_total += iters;
+    w->st.unknowns = nrows;
+
+    /* plates: pressure forces, loaded plates' velocities */
+    double F0[SPH_MAX_PLATES], Fk[SPH_MAX_LOADED][SPH_MAX_PLATES];
+    scatter(w, w->sol, w->p);
+    plate_pressure_force(w, w->p, F0);
+    if (K > 0) {
+        double a[SPH_MAX_LOADED][SPH_MAX_LOADED], x[SPH_MAX_LOADED];
+        for (int q = 0; q < K; q++) {
+            scatter(w, w->solk[q], w->psens[q]);
+            plate_pressure_force(w, w->psens[q], Fk[q]);
+        }
+        for (int r = 0; r < K; r++) {
+            sph_plate *pl = &w->plates[loaded[r]];
+            for (int c = 0; c < K; c++) a[r][c] = -Fk[c][loaded[r]];
+            a[r][r] += pl->mass / dt;
+            x[r] = pl->mass * pl->vel / dt + pl->load + pl->force_visc + F0[loaded[r]];
+        }
+        if (dense_solve(K, a, x))
+            return sph_world_fail(w, "singular plate system at step %ld (t = %g)", w->steps, w->t);
+        for (int q = 0; q < K; q++) w->plates[loaded[q]].vel_set = x[q]; /* V^{n+1} */
+        int nt = n + w->ng;
+        for (int i = 0; i < nt; i++) {
+            double pi = w->p[i];
+            for (int q = 0; q < K; q++) pi += x[q] * w->psens[q][i];
+            w->p[i] = pi;
+        }
+        plate_pressure_force(w, w->p, F0);
+    }
+    for (int k = 0; k < w->nplates; k++) w->plates[k].force = F0[k] + w->plates[k].force_visc;
+    return 0;
+}
+
+/* u^{n+1} = u* - dt (grad p / rho); continuity with u^{n+1}; x^{n+1} = x^n + dt (u^n + u^{n+1}) / 2. */
+void sph_pressure_correct(sph_world *w, double dt) {
+    int n = w->n;
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+    for (int i = 0; i < n; i++) {
+        if (w->kind[i] != SPH_FLUID) {
+            sph_plate_wall_velocity(w, i, &w->us[i], &w->vs[i]);
+            continue;
+        }
+        double pi = w->p[i] / (w->rho[i] * w->rho[i]), au = 0, av = 0;
+        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
+            int j = w->nb_j[k];
+            double c = w->m[j] * (pi + w->p[j] / (w->rho[j] * w->rho[j]));
+            au -= c * w->nb_gx[k];
+            av -= c * w->nb_gy[k];
+        }
+        w->us[i] += dt * au;
+        w->vs[i] += dt * av;
+    }
+    sph_boundary_sync(w, w->us, w->vs, 1);
+    double rho0 = w->par.rho0, maxerr = 0.0;
+#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(max : maxerr)
+    for (int i = 0; i < n; i++) {
+        if (w->kind[i] != SPH_FLUID) continue;
+        if (w->surf[i]) {
+            w->rho[i] = rho0;
+            continue;
+        }
+        double div = 0.0, ui = w->us[i], vi = w->vs[i];
+        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
+            int j = w->nb_j[k];
+            div += w->m[j] * ((ui - w->us[j]) * w->nb_gx[k] + (vi - w->vs[j]) * w->nb_gy[k]);
+        }
+        w->rho[i] += dt * div;
+        double e = fabs(w->rho[i] / rho0 - 1.0);
+        if (e > maxerr) maxerr = e;
+    }
+    w->st.max_density_error = maxerr;
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+    for (int i = 0; i < n; i++) {
+        if (w->kind[i] != SPH_FLUID) continue;
+        w->ax[i] = (w->us[i] - w->u[i]) / dt;
+        w->ay[i] = (w->vs[i] - w->v[i]) / dt;
+        w->x[i] += 0.5 * dt * (w->u[i] + w->us[i]);
+        w->y[i] += 0.5 * dt * (w->v[i] + w->vs[i]);
+        w->u[i] = w->us[i];
+        w->v[i] = w->vs[i];
+    }
+}

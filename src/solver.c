@@ -1,0 +1,124 @@
+/* Sparse linear algebra: a CSR matrix and Jacobi-preconditioned conjugate gradients.
+ * The solver has a contract (SPlisHSPlasH style): tolerance and iteration limit in,
+ * iterations, residual and convergence out; it never fails silently. */
+#include "internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+static int grow(void **p, size_t elem, int count) {
+    void *q = realloc(*p, elem * (size_t)(count > 0 ? count : 1));
+    if (!q) return -1;
+    *p = q;
+    return 0;
+}
+
+int sph_csr_reserve(sph_csr *a, int n, int nnz) {
+    if (n + 1 > a->cap) {
+        int cap = n + 1 + n / 4;
+        if (grow((void **)&a->start, sizeof(int), cap) || grow((void **)&a->diag, sizeof(double), cap))
+            return -1;
+        a->cap = cap;
+    }
+    if (nnz > a->nnz) {
+        int cap = nnz + nnz / 4;
+        if (grow((void **)&a->col, sizeof(int), cap) || grow((void **)&a->val, sizeof(double), cap))
+            return -1;
+        a->nnz = cap;
+    }
+    a->n = n;
+    return 0;
+}
+
+void sph_csr_free(sph_csr *a) {
+    free(a->start);
+    free(a->col);
+    free(a->val);
+    free(a->diag);
+    a->start = a->col = 0;
+    a->val = a->diag = 0;
+    a->n = a->nnz = a->cap = 0;
+}
+
+void sph_csr_matvec(const sph_csr *a, const double *x, double *y, int threads) {
+    int n = a->n;
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (int i = 0; i < n; i++) {
+        double s = 0.0;
+        for (int k = a->start[i]; k < a->start[i + 1]; k++) s += a->val[k] * x[a->col[k]];
+        y[i] = s;
+    }
+}
+
+int sph_solver_reserve(sph_solver *s, int n) {
+    if (n <= s->cap) return 0;
+    int cap = n + n / 4 + 16;
+    if (grow((void **)&s->r, sizeof(double), cap) || grow((void **)&s->z, sizeof(double), cap) ||
+        grow((void **)&s->q, sizeof(double), cap) || grow((void **)&s->d, sizeof(double), cap))
+        return -1;
+    s->cap = cap;
+    return 0;
+}
+
+void sph_solver_free(sph_solver *s) {
+    free(s->r);
+    free(s->z);
+    free(s->q);
+    free(s->d);
+    s->r = s->z = s->q = s->d = 0;
+    s->cap = 0;
+}
+
+static double dot(const double *a, const double *b, int n, int threads) {
+    double s = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : s) num_threads(threads)
+    for (int i = 0; i < n; i++) s += a[i] * b[i];
+    return s;
+}
+
+sph_solve_result sph_solver_pcg(sph_solver *s, const sph_csr *a, const double *b, double *x,
+                                double tol, int max_iter, int threads) {
+    sph_solve_result res = {0, 0.0, 1};
+    int n = a->n;
+    if (n == 0) return res;
+    double *r = s->r, *z = s->z, *q = s->q, *d = s->d;
+    double bnorm = sqrt(dot(b, b, n, threads));
+    if (bnorm == 0.0) {
+        for (int i = 0; i < n; i++) x[i] = 0.0;
+        return res;
+    }
+    sph_csr_matvec(a, x, q, threads);
+    for (int i = 0; i < n; i++) {
+        r[i] = b[i] - q[i];
+        z[i] = r[i] / a->diag[i];
+        d[i] = z[i];
+    }
+    double rz = dot(r, z, n, threads);
+    double rnorm = sqrt(dot(r, r, n, threads));
+    int it = 0;
+    while (rnorm > tol * bnorm && it < max_iter) {
+        sph_csr_matvec(a, d, q, threads);
+        double dq = dot(d, q, n, threads);
+        if (!(dq > 0.0)) break; /* not SPD, or breakdown: reported as not converged */
+        double alpha = rz / dq;
+        double rr = 0.0, rz1 = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : rr, rz1) num_threads(threads)
+        for (int i = 0; i < n; i++) {
+            x[i] += alpha * d[i];
+            r[i] -= alpha * q[i];
+            z[i] = r[i] / a->diag[i];
+            rr += r[i] * r[i];
+            rz1 += r[i] * z[i];
+        }
+        double beta = rz1 / rz;
+        rz = rz1;
+#pragma omp parallel for schedule(static) num_threads(threads)
+        for (int i = 0; i < n; i++) d[i] = z[i] + beta * d[i];
+        rnorm = sqrt(rr);
+        it++;
+    }
+    res.iterations = it;
+    res.residual = rnorm / bnorm;
+    res.converged = isfinite(rnorm) && rnorm <= tol * bnorm;
+    return res;
+}

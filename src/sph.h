@@ -1,0 +1,135 @@
+/* sph: incompressible SPH for viscoplastic flows (2D, plane strain).
+ *
+ * The engine's public C API. It does not depend on Lua: another C program can embed it.
+ * Units are whatever the caller uses consistently (the scripts use H = U = mu = 1).
+ * Every call that can fail returns a status (0 = ok, -1 = error) or a count (-1 = error)
+ * and leaves a message in sph_world_error(). Nothing here aborts or prints.
+ */
+#ifndef SPH_H
+#define SPH_H
+
+#include <stddef.h>
+
+#define SPH_VERSION "0.1.0"
+
+typedef struct sph_world sph_world;
+
+/* Constitutive laws eta(gammadot); see rheology.c. */
+typedef enum { SPH_NEWTONIAN = 0, SPH_BINGHAM = 1, SPH_HERSCHEL_BULKLEY = 2 } sph_model;
+
+typedef struct sph_material {
+    sph_model model;
+    double mu;   /* Newtonian / plastic viscosity [Pa s]            */
+    double tau0; /* yield stress [Pa] (Bingham, Herschel-Bulkley)   */
+    double m;    /* Papanastasiou stress-growth exponent [s]        */
+    double K;    /* consistency [Pa s^n] (Herschel-Bulkley)         */
+    double n;    /* flow index (Herschel-Bulkley)                   */
+} sph_material;
+
+/* Apparent viscosity and its value at gammadot = 0 (finite: tau0 * m). */
+double sph_rheology_eta(const sph_material *mat, double gammadot);
+/* A message naming the bad field, or NULL when the material is valid. */
+const char *sph_rheology_check(const sph_material *mat);
+
+typedef enum { SPH_VISC_EXPLICIT = 0, SPH_VISC_IMPLICIT = 1 } sph_viscosity;
+
+typedef struct sph_params {
+    double dx;             /* initial particle spacing (> 0)                       */
+    double h;              /* smoothing length (0: dx); kernel support 3h          */
+    double rho0;           /* reference density                                    */
+    double gravity[2];     /* body force per unit mass                             */
+    sph_viscosity viscosity;
+    double shifting;       /* particle-shifting coefficient, 0 = off              */
+    double cfl;            /* C_u: dt <= cfl h / max|u|                            */
+    double cvisc;          /* C_eta: dt <= cvisc rho h^2 / max eta (explicit)      */
+    double cforce;         /* C_f: dt <= cforce sqrt(h / max|a|)                   */
+    double dt_max;         /* upper bound on dt (0: none)                          */
+    double dt_min;         /* a step below this is an error (0: 1e-12 * h)         */
+    int periodic[2];       /* periodic in x / y                                    */
+    double period_lo[2], period_hi[2];
+    int symmetry[2];       /* mirror plane x = sym_at[0] / y = sym_at[1]           */
+    double sym_at[2];
+    int threads;           /* 0: all cores                                         */
+    double tol;            /* pressure solver: relative residual                   */
+    int max_iter;          /* pressure solver: iteration limit                     */
+    double surface_div;    /* free surface where div r < surface_div (2D: 2 full)  */
+    double density_relax;  /* weight of the density-invariant term in the PPE source */
+} sph_params;
+
+void sph_params_default(sph_params *p);
+
+/* A new empty world; NULL with a message in err on bad parameters. */
+sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen);
+void sph_world_free(sph_world *w);
+const char *sph_world_error(const sph_world *w);
+const sph_params *sph_world_params(const sph_world *w);
+
+/* Fill rect {x0, y0, x1, y1} with fluid on the dx lattice (points at (i + 1/2) dx from
+ * the lower-left corner); returns the number of particles added or -1. */
+int sph_world_fill(sph_world *w, const double rect[4], const sph_material *mat);
+
+/* Plates: rigid walls of particles filling rect (at least 3h thick). axis: -1 fixed,
+ * 0 moves along x, 1 along y. Returns the plate index or -1. */
+int sph_world_plate(sph_world *w, const double rect[4], int axis);
+int sph_world_nplates(const sph_world *w);
+
+typedef enum { SPH_PLATE_FIXED = 0, SPH_PLATE_VELOCITY = 1, SPH_PLATE_LOAD = 2 } sph_plate_mode;
+int sph_plate_set_velocity(sph_world *w, int plate, double v);
+int sph_plate_set_load(sph_world *w, int plate, double force);
+int sph_plate_set_mass(sph_world *w, int plate, double mass);
+sph_plate_mode sph_plate_mode_of(const sph_world *w, int plate);
+int sph_plate_axis(const sph_world *w, int plate);
+/* Coordinate along the axis of the face that touches the fluid. */
+double sph_plate_position(const sph_world *w, int plate);
+double sph_plate_velocity(const sph_world *w, int plate);
+/* Fluid force on the plate along its axis (the whole sample's, with a symmetry plane). */
+double sph_plate_force(const sph_world *w, int plate);
+double sph_plate_mass(const sph_world *w, int plate);
+/* Current rectangle of a plate (it moves). */
+void sph_plate_rect(const sph_world *w, int plate, double rect[4]);
+
+/* Time stepping. sph_world_next_dt: the adaptive dt the next step would take.
+ * sph_world_step(w, dt): one step of the given dt (<= 0: adaptive). */
+double sph_world_next_dt(sph_world *w);
+int sph_world_step(sph_world *w, double dt);
+double sph_world_time(const sph_world *w);
+double sph_world_dt(const sph_world *w);
+long sph_world_steps(const sph_world *w);
+
+typedef struct sph_stats {
+    int particles;            /* fluid + wall (real, not ghosts)          */
+    int fluid;
+    int wall;
+    int ghosts;
+    int surface;              /* fluid particles held at p = 0            */
+    int unknowns;             /* rows of the pressure system             */
+    int solver_iterations;    /* last pressure solve                      */
+    double solver_residual;   /* relative residual reached               */
+    long solver_iterations_total;
+    int visc_iterations;      /* last implicit viscous solve (0: explicit) */
+    double visc_residual;
+    double max_density_error; /* max |rho/rho0 - 1| over interior fluid   */
+    double kinetic_energy;    /* sum 1/2 m |u|^2 over fluid               */
+    double area;              /* sum m / rho over fluid                   */
+    double max_speed;
+    double max_eta;
+    int yielded;              /* fluid particles with |tau| > tau0        */
+    double neighbours_mean;
+    double wall_time;         /* seconds spent in sph_world_step so far   */
+} sph_stats;
+
+void sph_world_stats(const sph_world *w, sph_stats *s);
+
+/* Per-fluid-particle fields (in the engine's current order). Names: x y u v p rho eta
+ * gammadot stress yielded speed surface material. Returns the count written into out
+ * (which must hold sph_world_nfluid values) or -1 for an unknown name. */
+int sph_world_nfluid(const sph_world *w);
+int sph_world_field(const sph_world *w, const char *name, double *out);
+/* Every field name, NULL-terminated. */
+const char *const *sph_world_field_names(void);
+
+/* Output. 0 or -1 with a message. */
+int sph_world_write_csv(sph_world *w, const char *file);
+int sph_world_write_vtk(sph_world *w, const char *file);
+
+#endif

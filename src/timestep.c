@@ -1,0 +1,47 @@
+/* Adaptive time step (PHYSICS.md):
+ *   dt = min(C_u h / max|u|, C_eta rho h^2 / max eta (explicit viscosity only),
+ *            C_f sqrt(h / max|a|), dt_max), and at most 25 % more than the last step.
+ * Plate speeds and accelerations count, so a plate driven into a fluid at rest sets the
+ * first step. */
+#include "internal.h"
+
+#include <math.h>
+
+double sph_timestep_compute(sph_world *w) {
+    const sph_params *P = &w->par;
+    double h = w->h, umax = 0.0, amax = 0.0, etamax = 0.0, rhomin = INFINITY;
+    int n = w->n;
+#pragma omp parallel for schedule(static) num_threads(w->threads) \
+    reduction(max : umax, amax, etamax) reduction(min : rhomin)
+    for (int i = 0; i < n; i++) {
+        if (w->kind[i] != SPH_FLUID) continue;
+        double s = w->u[i] * w->u[i] + w->v[i] * w->v[i];
+        double a = w->ax[i] * w->ax[i] + w->ay[i] * w->ay[i];
+        if (s > umax) umax = s;
+        if (a > amax) amax = a;
+        if (w->eta[i] > etamax) etamax = w->eta[i];
+        if (w->rho[i] < rhomin) rhomin = w->rho[i];
+    }
+    umax = sqrt(umax);
+    amax = sqrt(amax);
+    for (int k = 0; k < w->nplates; k++) {
+        const sph_plate *pl = &w->plates[k];
+        double v = pl->mode == SPH_PLATE_VELOCITY ? pl->vel_set : pl->vel;
+        if (fabs(v) > umax) umax = fabs(v);
+        if (pl->mode == SPH_PLATE_LOAD && pl->mass > 0) {
+            double a = fabs(pl->load + pl->force) / pl->mass;
+            if (a > amax) amax = a;
+        }
+    }
+    double g = hypot(P->gravity[0], P->gravity[1]);
+    if (g > amax) amax = g;
+    double dt = INFINITY;
+    if (umax > 0) dt = fmin(dt, P->cfl * h / umax);
+    if (amax > 0) dt = fmin(dt, P->cforce * sqrt(h / amax));
+    if (P->viscosity == SPH_VISC_EXPLICIT && etamax > 0 && isfinite(rhomin))
+        dt = fmin(dt, P->cvisc * rhomin * h * h / etamax);
+    if (P->dt_max > 0) dt = fmin(dt, P->dt_max);
+    if (w->dt_prev > 0) dt = fmin(dt, 1.25 * w->dt_prev);
+    if (!isfinite(dt)) dt = P->cfl * h; /* nothing moves: a step as if |u| = 1 */
+    return dt;
+}

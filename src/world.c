@@ -1,0 +1,406 @@
+/* The world: all state of one simulation (particles, materials, plates, solver scratch,
+ * statistics, the last error), and the time step that ties the passes together. */
+#include "internal.h"
+
+#include <math.h>
+#include <omp.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+void sph_params_default(sph_params *p) {
+    memset(p, 0, sizeof *p);
+    p->dx = 0.0;
+    p->h = 0.0;
+    p->rho0 = 1.0;
+    p->viscosity = SPH_VISC_EXPLICIT;
+    p->cfl = 0.25;
+    p->cvisc = 0.125;
+    p->cforce = 0.25;
+    p->tol = 1e-6;
+    p->max_iter = 5000;
+    p->surface_div = 1.5;
+    p->density_relax = 1.0;
+}
+
+int sph_world_fail(sph_world *w, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(w->err, sizeof w->err, fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+const char *sph_world_error(const sph_world *w) { return w->err; }
+const sph_params *sph_world_params(const sph_world *w) { return &w->par; }
+
+static const char *check_params(const sph_params *p) {
+    static const char *const bad[] = {
+        "dx must be a positive number", "h must be >= 0 (0: dx)", "rho must be a positive number",
+        "cfl must be in (0, 1]", "periodic range must have lo < hi",
+        "an axis cannot be both periodic and a symmetry plane", "tol must be in (0, 1)",
+        "max_iter must be positive", "gravity must be finite", "density_relax must be in [0, 1]",
+        "shifting must be >= 0"};
+    if (!(p->dx > 0 && isfinite(p->dx))) return bad[0];
+    if (!(p->h >= 0 && isfinite(p->h))) return bad[1];
+    if (!(p->rho0 > 0 && isfinite(p->rho0))) return bad[2];
+    if (!(p->cfl > 0 && p->cfl <= 1) || !(p->cvisc > 0) || !(p->cforce > 0)) return bad[3];
+    for (int a = 0; a < 2; a++) {
+        if (p->periodic[a] && !(p->period_lo[a] < p->period_hi[a])) return bad[4];
+        if (p->periodic[a] && p->symmetry[a]) return bad[5];
+    }
+    if (!(p->tol > 0 && p->tol < 1)) return bad[6];
+    if (p->max_iter <= 0) return bad[7];
+    if (!isfinite(p->gravity[0]) || !isfinite(p->gravity[1])) return bad[8];
+    if (!(p->density_relax >= 0 && p->density_relax <= 1)) return bad[9];
+    if (!(p->shifting >= 0)) return bad[10];
+    return 0;
+}
+
+sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
+    const char *bad = check_params(p);
+    if (bad) {
+        if (err) snprintf(err, errlen, "%s", bad);
+        return 0;
+    }
+    sph_world *w = calloc(1, sizeof *w);
+    if (!w) {
+        if (err) snprintf(err, errlen, "out of memory");
+        return 0;
+    }
+    w->par = *p;
+    w->dx = p->dx;
+    w->h = p->h > 0 ? p->h : p->dx;
+    w->par.h = w->h;
+    w->eps2 = 0.01 * w->h * w->h;
+    w->mass0 = p->rho0 * p->dx * p->dx;
+    w->threads = p->threads > 0 ? p->threads : omp_get_num_procs();
+    if (w->par.dt_min <= 0) w->par.dt_min = 1e-12 * w->h;
+    return w;
+}
+
+void sph_world_free(sph_world *w) {
+    if (!w) return;
+    double **d[] = {&w->x, &w->y, &w->u, &w->v, &w->us, &w->vs, &w->ax, &w->ay, &w->p,
+                    &w->rho, &w->m, &w->eta, &w->gd, &w->divr, &w->xs, &w->ys,
+                    &w->psens[0], &w->psens[1], &w->psens[2], &w->psens[3], &w->nb_gx,
+                    &w->nb_gy, &w->nb_f, &w->b, &w->sol, &w->bk[0], &w->bk[1], &w->bk[2],
+                    &w->bk[3], &w->solk[0], &w->solk[1], &w->solk[2], &w->solk[3]};
+    for (size_t k = 0; k < sizeof d / sizeof *d; k++) free(*d[k]);
+    int **ip[] = {&w->kind, &w->mat, &w->id, &w->src, &w->row, &w->perm, &w->iscratch,
+                  &w->cell_start, &w->cell_items, &w->cell_of, &w->nb_start, &w->nb_j,
+                  &w->nb_count, &w->row_of};
+    for (size_t k = 0; k < sizeof ip / sizeof *ip; k++) free(*ip[k]);
+    free(w->gsx);
+    free(w->gsy);
+    free(w->surf);
+    free(w->active);
+    free(w->cellflag);
+    sph_csr_free(&w->A);
+    sph_solver_free(&w->solver);
+    free(w);
+}
+
+/* Room for `need` particles (real and ghosts) in every per-particle array. */
+int sph_world_reserve(sph_world *w, int need) {
+    if (need <= w->cap) return 0;
+    int cap = need + need / 2 + 256;
+    double **d[] = {&w->x, &w->y, &w->u, &w->v, &w->us, &w->vs, &w->ax, &w->ay, &w->p,
+                    &w->rho, &w->m, &w->eta, &w->gd, &w->divr, &w->xs, &w->ys,
+                    &w->psens[0], &w->psens[1], &w->psens[2], &w->psens[3]};
+    for (size_t k = 0; k < sizeof d / sizeof *d; k++) {
+        double *q = realloc(*d[k], sizeof(double) * (size_t)cap);
+        if (!q) return sph_world_fail(w, "out of memory (%d particles)", need);
+        memset(q + w->cap, 0, sizeof(double) * (size_t)(cap - w->cap));
+        *d[k] = q;
+    }
+    int **ip[] = {&w->kind, &w->mat, &w->id, &w->src, &w->row, &w->perm, &w->iscratch,
+                  &w->cell_of, &w->nb_count};
+    for (size_t k = 0; k < sizeof ip / sizeof *ip; k++) {
+        int *q = realloc(*ip[k], sizeof(int) * (size_t)cap);
+        if (!q) return sph_world_fail(w, "out of memory (%d particles)", need);
+        memset(q + w->cap, 0, sizeof(int) * (size_t)(cap - w->cap));
+        *ip[k] = q;
+    }
+    int *ns = realloc(w->nb_start, sizeof(int) * (size_t)(cap + 1));
+    if (!ns) return sph_world_fail(w, "out of memory (%d particles)", need);
+    w->nb_start = ns;
+    unsigned char **c[] = {&w->surf, &w->active};
+    for (size_t k = 0; k < 2; k++) {
+        unsigned char *q = realloc(*c[k], (size_t)cap);
+        if (!q) return sph_world_fail(w, "out of memory (%d particles)", need);
+        memset(q + w->cap, 0, (size_t)(cap - w->cap));
+        *c[k] = q;
+    }
+    signed char **s[] = {&w->gsx, &w->gsy};
+    for (size_t k = 0; k < 2; k++) {
+        signed char *q = realloc(*s[k], (size_t)cap);
+        if (!q) return sph_world_fail(w, "out of memory (%d particles)", need);
+        memset(q + w->cap, 1, (size_t)(cap - w->cap));
+        *s[k] = q;
+    }
+    w->cap = cap;
+    return 0;
+}
+
+int sph_world_fill(sph_world *w, const double rect[4], const sph_material *mat) {
+    const char *bad = sph_rheology_check(mat);
+    if (bad) return sph_world_fail(w, "material: %s", bad);
+    if (!(rect[2] > rect[0] && rect[3] > rect[1]))
+        return sph_world_fail(w, "rect {%g, %g, %g, %g} must have x0 < x1 and y0 < y1", rect[0],
+                              rect[1], rect[2], rect[3]);
+    int mi = -1;
+    for (int k = 0; k < w->nmats; k++)
+        if (!memcmp(&w->mats[k], mat, sizeof *mat)) mi = k;
+    if (mi < 0) {
+        if (w->nmats == SPH_MAX_MATERIALS) return sph_world_fail(w, "too many materials");
+        w->mats[w->nmats] = *mat;
+        mi = w->nmats++;
+    }
+    const sph_params *P = &w->par;
+    double dx = w->dx;
+    int nx = (int)floor((rect[2] - rect[0]) / dx + 0.5), ny = (int)floor((rect[3] - rect[1]) / dx + 0.5);
+    int added = 0;
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++) {
+            double px = rect[0] + (i + 0.5) * dx, py = rect[1] + (j + 0.5) * dx;
+            if ((P->symmetry[0] && px < P->sym_at[0]) || (P->symmetry[1] && py < P->sym_at[1]))
+                continue;
+            if ((P->periodic[0] && (px < P->period_lo[0] || px >= P->period_hi[0])) ||
+                (P->periodic[1] && (py < P->period_lo[1] || py >= P->period_hi[1])))
+                continue;
+            int inside = 0; /* never fill inside a plate */
+            for (int k = 0; k < w->nplates && !inside; k++) {
+                const double *R = w->plates[k].rect;
+                inside = px > R[0] && px < R[2] && py > R[1] && py < R[3];
+            }
+            if (inside) continue;
+            int q = w->n;
+            if (sph_world_reserve(w, q + 1)) return -1;
+            w->x[q] = px;
+            w->y[q] = py;
+            w->u[q] = w->v[q] = 0.0;
+            w->kind[q] = SPH_FLUID;
+            w->mat[q] = mi;
+            w->m[q] = w->mass0;
+            w->rho[q] = P->rho0;
+            w->eta[q] = sph_rheology_eta(mat, 0.0);
+            w->id[q] = w->next_id++;
+            w->n++;
+            added++;
+        }
+    w->nfluid += added;
+    w->prepared = 0;
+    return added;
+}
+
+int sph_world_plate(sph_world *w, const double rect[4], int axis) {
+    if (!(rect[2] > rect[0] && rect[3] > rect[1]))
+        return sph_world_fail(w, "rect {%g, %g, %g, %g} must have x0 < x1 and y0 < y1", rect[0],
+                              rect[1], rect[2], rect[3]);
+    if (axis < -1 || axis > 1) return sph_world_fail(w, "axis must be -1, 0 or 1");
+    /* fluid already inside the new plate would start through it */
+    for (int i = 0; i < w->n; i++)
+        if (w->kind[i] == SPH_FLUID && w->x[i] > rect[0] && w->x[i] < rect[2] && w->y[i] > rect[1] &&
+            w->y[i] < rect[3])
+            return sph_world_fail(w, "plate rect {%g, %g, %g, %g} overlaps fluid at (%g, %g)",
+                                  rect[0], rect[1], rect[2], rect[3], w->x[i], w->y[i]);
+    return sph_plate_fill(w, rect, axis);
+}
+
+int sph_world_nplates(const sph_world *w) { return w->nplates; }
+double sph_world_time(const sph_world *w) { return w->t; }
+double sph_world_dt(const sph_world *w) { return w->dt; }
+long sph_world_steps(const sph_world *w) { return w->steps; }
+int sph_world_nfluid(const sph_world *w) { return w->nfluid; }
+
+static int check_finite(sph_world *w) {
+    for (int i = 0; i < w->n; i++) {
+        if (w->kind[i] != SPH_FLUID) continue;
+        if (!isfinite(w->x[i]) || !isfinite(w->y[i]) || !isfinite(w->u[i]) || !isfinite(w->v[i]) ||
+            !isfinite(w->p[i]) || !isfinite(w->rho[i]))
+            return sph_world_fail(w,
+                                  "NaN or infinity at fluid particle %d at step %ld (t = %g): "
+                                  "x = (%g, %g), u = (%g, %g), p = %g, rho = %g",
+                                  w->id[i], w->steps, w->t, w->x[i], w->y[i], w->u[i], w->v[i],
+                                  w->p[i], w->rho[i]);
+    }
+    for (int k = 0; k < w->nplates; k++)
+        if (!isfinite(w->plates[k].vel) || !isfinite(w->plates[k].force))
+            return sph_world_fail(w, "plate %d: non-finite velocity or force at step %ld (t = %g)",
+                                  k + 1, w->steps, w->t);
+    return 0;
+}
+
+static void prepare(sph_world *w) {
+    if (w->prepared) return;
+    sph_plate_prepare(w);
+    w->prepared = 1;
+}
+
+double sph_world_next_dt(sph_world *w) {
+    prepare(w);
+    return sph_timestep_compute(w);
+}
+
+/* Surface flags: position divergence below the threshold (about 2 inside, 1 on a
+ * straight free surface). */
+static void mark_surface(sph_world *w) {
+    int ns = 0;
+    for (int i = 0; i < w->n; i++) {
+        unsigned char s = w->kind[i] == SPH_FLUID && w->divr[i] < w->par.surface_div;
+        w->surf[i] = s;
+        ns += s;
+    }
+    for (int g = w->n; g < w->n + w->ng; g++) w->surf[g] = w->surf[w->src[g]];
+    w->st.surface = ns;
+}
+
+int sph_world_step(sph_world *w, double dt) {
+    double t0 = omp_get_wtime();
+    prepare(w);
+    if (w->nfluid == 0) return sph_world_fail(w, "the world has no fluid: call fill first");
+    if (!(dt > 0)) dt = sph_timestep_compute(w);
+    if (!isfinite(dt) || dt < w->par.dt_min)
+        return sph_world_fail(w, "time step %g below the minimum %g at step %ld (t = %g)", dt,
+                              w->par.dt_min, w->steps, w->t);
+
+    /* plates: the velocity each holds during this step */
+    double vold[SPH_MAX_PLATES];
+    for (int k = 0; k < w->nplates; k++) {
+        sph_plate *pl = &w->plates[k];
+        if (pl->mode == SPH_PLATE_VELOCITY) pl->vel = pl->vel_set;
+        else if (pl->mode == SPH_PLATE_FIXED) pl->vel = 0.0;
+        vold[k] = pl->vel;
+    }
+
+    sph_boundary_wrap(w);
+    if (sph_neighbours_sort(w) || sph_boundary_ghosts(w) || sph_neighbours_build(w)) return -1;
+    mark_surface(w);
+    sph_viscous_rheology(w);
+    sph_viscous_explicit(w, dt);
+    if (sph_pressure_solve(w, dt)) return -1;
+    for (int k = 0; k < w->nplates; k++)
+        if (w->plates[k].mode == SPH_PLATE_LOAD) w->plates[k].vel = w->plates[k].vel_set;
+    sph_pressure_correct(w, dt);
+    for (int k = 0; k < w->nplates; k++) sph_plate_move(w, k, 0.5 * dt * (vold[k] + w->plates[k].vel));
+
+    w->t += dt;
+    w->dt = dt;
+    w->dt_prev = dt;
+    w->steps++;
+    w->wall_time += omp_get_wtime() - t0;
+    if (check_finite(w) || sph_plate_check_escape(w)) return -1;
+    return 0;
+}
+
+void sph_world_stats(const sph_world *w, sph_stats *s) {
+    *s = w->st;
+    s->fluid = w->nfluid;
+    s->particles = w->n;
+    s->wall = w->n - w->nfluid;
+    s->ghosts = w->ng;
+    double ke = 0, area = 0, umax = 0, etamax = 0;
+    int yielded = 0;
+    for (int i = 0; i < w->n; i++) {
+        if (w->kind[i] != SPH_FLUID) continue;
+        double s2 = w->u[i] * w->u[i] + w->v[i] * w->v[i];
+        ke += 0.5 * w->m[i] * s2;
+        area += w->m[i] / w->rho[i];
+        if (s2 > umax) umax = s2;
+        if (w->eta[i] > etamax) etamax = w->eta[i];
+        yielded += w->eta[i] * w->gd[i] > w->mats[w->mat[i]].tau0;
+    }
+    s->kinetic_energy = ke;
+    s->area = area;
+    s->max_speed = sqrt(umax);
+    s->max_eta = etamax;
+    s->yielded = yielded;
+    long pairs = w->nb_start ? w->nb_start[w->n] : 0;
+    s->neighbours_mean = w->n ? (double)pairs / (w->st.unknowns + w->st.surface + 1e-300) : 0;
+    s->wall_time = w->wall_time;
+}
+
+static const char *const FIELD_NAMES[] = {"x",     "y",        "u",      "v",       "p",
+                                          "rho",   "eta",      "gammadot", "stress", "yielded",
+                                          "speed", "surface",  "material", "id",    0};
+
+const char *const *sph_world_field_names(void) { return FIELD_NAMES; }
+
+int sph_world_field(const sph_world *w, const char *name, double *out) {
+    int f = -1;
+    for (int k = 0; FIELD_NAMES[k]; k++)
+        if (!strcmp(name, FIELD_NAMES[k])) f = k;
+    if (f < 0) return -1;
+    int c = 0;
+    for (int i = 0; i < w->n; i++) {
+        if (w->kind[i] != SPH_FLUID) continue;
+        double tau0 = w->mats[w->mat[i]].tau0, v = 0;
+        switch (f) {
+        case 0: v = w->x[i]; break;
+        case 1: v = w->y[i]; break;
+        case 2: v = w->u[i]; break;
+        case 3: v = w->v[i]; break;
+        case 4: v = w->p[i]; break;
+        case 5: v = w->rho[i]; break;
+        case 6: v = w->eta[i]; break;
+        case 7: v = w->gd[i]; break;
+        case 8: v = w->eta[i] * w->gd[i]; break;
+        case 9: v = w->eta[i] * w->gd[i] > tau0; break;
+        case 10: v = hypot(w->u[i], w->v[i]); break;
+        case 11: v = w->surf[i]; break;
+        case 12: v = w->mat[i] + 1; break;
+        case 13: v = w->id[i] + 1; break;
+        }
+        out[c++] = v;
+    }
+    return c;
+}
+
+/* plate accessors (whole-sample values) */
+static int plate_ok(sph_world *w, int k) {
+    if (k < 0 || k >= w->nplates) return sph_world_fail(w, "no plate %d", k + 1);
+    return 0;
+}
+
+int sph_plate_set_velocity(sph_world *w, int k, double v) {
+    if (plate_ok(w, k)) return -1;
+    if (w->plates[k].axis < 0) return sph_world_fail(w, "plate %d is fixed (no axis): it cannot move", k + 1);
+    if (!isfinite(v)) return sph_world_fail(w, "plate %d: velocity %g is not finite", k + 1, v);
+    w->plates[k].mode = SPH_PLATE_VELOCITY;
+    w->plates[k].vel_set = v;
+    return 0;
+}
+
+int sph_plate_set_load(sph_world *w, int k, double f) {
+    if (plate_ok(w, k)) return -1;
+    if (w->plates[k].axis < 0) return sph_world_fail(w, "plate %d is fixed (no axis): it cannot move", k + 1);
+    if (!isfinite(f)) return sph_world_fail(w, "plate %d: load %g is not finite", k + 1, f);
+    sph_plate *pl = &w->plates[k];
+    if (pl->mode != SPH_PLATE_LOAD) pl->vel_set = pl->vel;
+    pl->mode = SPH_PLATE_LOAD;
+    pl->load = f;
+    return 0;
+}
+
+int sph_plate_set_mass(sph_world *w, int k, double m) {
+    if (plate_ok(w, k)) return -1;
+    if (!(m > 0 && isfinite(m))) return sph_world_fail(w, "plate %d: mass must be a positive number", k + 1);
+    w->plates[k].mass = m;
+    w->plates[k].mass_set = 1;
+    return 0;
+}
+
+sph_plate_mode sph_plate_mode_of(const sph_world *w, int k) { return w->plates[k].mode; }
+int sph_plate_axis(const sph_world *w, int k) { return w->plates[k].axis; }
+double sph_plate_velocity(const sph_world *w, int k) {
+    const sph_plate *pl = &w->plates[k];
+    return pl->mode == SPH_PLATE_VELOCITY && w->steps == 0 ? pl->vel_set : pl->vel;
+}
+double sph_plate_force(const sph_world *w, int k) { return w->plates[k].force; }
+double sph_plate_mass(const sph_world *w, int k) { return w->plates[k].mass; }
+void sph_plate_rect(const sph_world *w, int k, double rect[4]) {
+    memcpy(rect, w->plates[k].rect, sizeof(double) * 4);
+}

@@ -1,0 +1,34 @@
+#!/bin/sh
+# The one test runner: C unit tests (build/tests/test_*) and Lua tests (tests/lua/*.lua,
+# run by the sph host). Every check prints "ok - ..." or "not ok - ..."; a program that
+# exits non-zero without a "not ok" line counts as one failure. Ends with the summary line.
+B=${1:-build}
+top=$(cd "$(dirname "$0")/.." && pwd)
+log=$(mktemp)
+pass=0; fail=0
+run() {
+    name=$1; shift
+    out=$(mktemp)
+    "$@" >"$out" 2>&1
+    rc=$?
+    p=$(grep -c '^ok - ' "$out"); f=$(grep -c '^not ok - ' "$out")
+    if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
+        f=1; echo "not ok - $name: exited with status $rc" >>"$out"
+    fi
+    grep -E '^(not ok - )' "$out"
+    if [ "$f" -ne 0 ] || [ "$rc" -ne 0 ]; then tail -n 20 "$out" | grep -v '^ok - '; fi
+    printf '%-40s %4d passed, %d failed\n' "$name" "$p" "$f"
+    pass=$((pass + p)); fail=$((fail + f))
+    rm -f "$out"
+}
+for t in "$top/$B"/tests/test_*; do
+    [ -x "$t" ] || continue
+    run "$(basename "$t")" "$t"
+done
+for t in "$top"/tests/lua/*.lua; do
+    [ -f "$t" ] || continue
+    run "$(basename "$t")" "$top/$B/sph" "$t"
+done
+rm -f "$log"
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
