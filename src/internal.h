@@ -61,6 +61,8 @@ struct sph_world {
     double *ax, *ay;           /* acceleration of the last step (dt force limit)    */
     double *p, *rho, *m;       /* pressure, density, mass                           */
     double *eta, *gd, *divr;   /* apparent viscosity, shear rate, position div      */
+    double *lxx, *lxy, *lyy;   /* kernel-gradient renormalisation (Bonet & Lok 1999) */
+    double *gux, *guy, *gvx, *gvy; /* velocity gradient (du/dx, du/dy, dv/dx, dv/dy)  */
     double *xs, *ys;           /* scratch for reordering / positions at step start */
     int *kind, *mat, *id;      /* SPH_FLUID or plate index; material; stable id     */
     int *src;                  /* ghosts: the real particle they image; reals: self */
@@ -144,6 +146,8 @@ void sph_viscous_explicit(sph_world *w, double dt);
 void sph_viscous_plate_forces(sph_world *w);
 int sph_pressure_solve(sph_world *w, double dt);
 void sph_pressure_correct(sph_world *w, double dt);
+/* shifting.c */
+void sph_shifting_apply(sph_world *w, double dt);
 
 /* timestep.c */
 double sph_timestep_compute(sph_world *w);

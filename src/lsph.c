@@ -1,7 +1,7 @@
 /* The Lua binding: module "sph" over the C engine (src/sph.h). A thin layer: it checks
  * arguments (errors name the argument), calls the engine, and turns engine errors into Lua
  * errors. Lua runs at most once per step (plate laws) and once per output. */
-#include "sph.h"
+#include "lsph.h"
 
 #include <lauxlib.h>
 #include <lualib.h>
@@ -12,7 +12,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#define WORLD "sph.world"
+#define WORLD SPH_LUA_WORLD
 #define PLATE "sph.plate"
 #define MATERIAL "sph.material"
 
@@ -86,7 +86,7 @@ static void opt_rect(lua_State *L, int idx, const char *fname, double r[4]) {
     }
     lua_pop(L, 1);
     if (!(r[2] > r[0] && r[3] > r[1]))
-        luaL_error(L, "bad argument to '%s' (rect: need x0 < x1 and y0 < y1, got {%g, %g, %g, %g})",
+        luaL_error(L, "bad argument to '%s' (rect: need x0 < x1 and y0 < y1, got {%f, %f, %f, %f})",
                    fname, r[0], r[1], r[2], r[3]);
 }
 
@@ -95,6 +95,8 @@ static lworld *check_world(lua_State *L, int idx) {
     if (!lw->w) luaL_error(L, "attempt to use a closed sph.world");
     return lw;
 }
+
+sph_world *sph_lua_checkworld(lua_State *L, int idx) { return check_world(L, idx)->w; }
 
 static int engine_error(lua_State *L, sph_world *w) { return luaL_error(L, "%s", sph_world_error(w)); }
 
@@ -205,7 +207,8 @@ static int l_world(lua_State *L) {
     p.max_iter = (int)opt_number(L, 1, "world", "max_iter", p.max_iter);
     p.surface_div = opt_number(L, 1, "world", "surface", p.surface_div);
     p.density_relax = opt_number(L, 1, "world", "density_relax", p.density_relax);
-    if (!(p.dx > 0)) luaL_error(L, "bad argument to 'world' (dx: positive number expected, got %g)", p.dx);
+    if (!(p.shifting >= 0)) luaL_error(L, "bad argument to 'world' (shifting: number >= 0 expected)");
+    if (!(p.dx > 0)) luaL_error(L, "bad argument to 'world' (dx: positive number expected, got %f)", p.dx);
     if (p.threads < 0) luaL_error(L, "bad argument to 'world' (threads: number >= 1 expected)");
     int t = lua_getfield(L, 1, "gravity");
     if (t == LUA_TTABLE) {
@@ -254,8 +257,6 @@ static int l_world(lua_State *L) {
     if (p.viscosity == SPH_VISC_IMPLICIT)
         luaL_error(L, "bad argument to 'world' (viscosity: \"implicit\" is not available in this "
                       "version; use \"explicit\")");
-    if (p.shifting != 0)
-        luaL_error(L, "bad argument to 'world' (shifting: not available in this version; use 0)");
 
     lworld *lw = lua_newuserdatauv(L, sizeof *lw, 1);
     lw->w = 0;

@@ -104,11 +104,8 @@ int main(int argc, char **argv) {
     lua_pushinteger(L, argc);
     lua_pushlightuserdata(L, argv);
     int rc = lua_pcall(L, 2, 0, 1);
-    if (rc != LUA_OK) {
-        fprintf(stderr, "sph: %s\n", lua_tostring(L, -1));
-        lua_close(L);
-        return 1;
-    }
+    if (rc != LUA_OK) fprintf(stderr, "sph: %s\n", lua_tostring(L, -1));
     lua_close(L);
-    return 0;
+    sph_render_release_fonts(); /* cairo's and fontconfig's caches, for leak checkers */
+    return rc == LUA_OK ? 0 : 1;
 }

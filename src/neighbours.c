@@ -206,7 +206,7 @@ int sph_neighbours_build(sph_world *w) {
     for (int i = 0; i < n; i++) {
         if (!w->active[i]) continue;
         int k = w->nb_start[i];
-        double xi = w->x[i], yi = w->y[i], divr = 0.0;
+        double xi = w->x[i], yi = w->y[i], divr = 0.0, mxx = 0.0, mxy = 0.0, myy = 0.0;
         FOR_CANDIDATES(w, i, j, {
             double dx = xi - w->x[j], dy = yi - w->y[j], r2 = dx * dx + dy * dy;
             if (r2 < r2max && j != i) {
@@ -217,11 +217,26 @@ int sph_neighbours_build(sph_world *w) {
                 w->nb_gx[k] = g * dx;
                 w->nb_gy[k] = g * dy;
                 w->nb_f[k] = r * dw / (r2 + eps2);
-                divr -= w->m[j] / w->rho[j] * r * dw;
+                double vol = w->m[j] / w->rho[j];
+                divr -= vol * r * dw;
+                mxx -= vol * g * dx * dx;
+                mxy -= vol * g * dx * dy;
+                myy -= vol * g * dy * dy;
                 k++;
             }
         });
         w->divr[i] = divr;
+        /* L = M^-1, M = sum_j V_j (x_j - x_i) (x) grad_i W_ij (= I in the bulk). Where the
+         * support is too truncated for M to be trusted, L = I. */
+        double det = mxx * myy - mxy * mxy;
+        if (det > 0.25 && mxx > 0 && myy > 0) {
+            w->lxx[i] = myy / det;
+            w->lxy[i] = -mxy / det;
+            w->lyy[i] = mxx / det;
+        } else {
+            w->lxx[i] = w->lyy[i] = 1.0;
+            w->lxy[i] = 0.0;
+        }
     }
     return 0;
 }

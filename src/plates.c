@@ -70,18 +70,25 @@ int sph_plate_fill(sph_world *w, const double rect[4], int axis) {
 }
 
 /* Which side of the plate the fluid is on, along its axis, from the fluid's centroid. */
+/* The axis along which a plate's position is measured: its own, or for a fixed plate the
+ * direction across its thinner side. */
+static int position_axis(const sph_plate *pl) {
+    if (pl->axis >= 0) return pl->axis;
+    return pl->rect[2] - pl->rect[0] < pl->rect[3] - pl->rect[1] ? 0 : 1;
+}
+
 static int face_side(const sph_world *w, const sph_plate *pl) {
-    if (pl->axis < 0) return 0;
+    int a = position_axis(pl);
     double c = 0.0;
     int nf = 0;
     for (int i = 0; i < w->n; i++)
         if (w->kind[i] == SPH_FLUID) {
-            c += pl->axis == 0 ? w->x[i] : w->y[i];
+            c += a == 0 ? w->x[i] : w->y[i];
             nf++;
         }
     if (nf == 0) return 0;
     c /= nf;
-    double mid = 0.5 * (pl->rect[pl->axis] + pl->rect[pl->axis + 2]);
+    double mid = 0.5 * (pl->rect[a] + pl->rect[a + 2]);
     return c >= mid ? 1 : -1;
 }
 
@@ -94,7 +101,7 @@ void sph_plate_prepare(sph_world *w) {
 
 double sph_plate_position(const sph_world *w, int k) {
     const sph_plate *pl = &w->plates[k];
-    int a = pl->axis < 0 ? 1 : pl->axis;
+    int a = position_axis(pl);
     int side = pl->face_side ? pl->face_side : face_side(w, pl);
     return side > 0 ? pl->rect[a + 2] : pl->rect[a];
 }

@@ -2,6 +2,8 @@
  *   div((1/rho) grad p)_i = [ -dt sum_j m_j (u*_i - u*_j) . grad_i W_ij
  *                             + gamma (rho0 - rho_i) ] / (rho0 dt^2)
  * gamma = 1 is the paper's density-invariant source (rho0 - rho*_i) / (rho0 dt^2).
+ * The divergence uses the renormalised kernel gradient L grad W (Bonet & Lok 1999), so
+ * it stays first-order consistent next to a free surface.
  * Laplacian: sum_j m_j 8 / (rho_i + rho_j)^2 (p_i - p_j) F_ij. Rows: fluid particles and
  * the wall particles near fluid; free-surface particles are held at p = 0. Each row is
  * scaled by m_i so that the matrix is symmetric positive definite; ghosts map to the
@@ -69,7 +71,7 @@ static inline void sens_velocity(const sph_world *w, int j, int k, double *vx, d
 static void plate_pressure_force(const sph_world *w, const double *p, double *out) {
     int n = w->n, np = w->nplates;
     double f[SPH_MAX_PLATES] = {0};
-#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : f[:np])
+#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : f[:SPH_MAX_PLATES])
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) continue;
         double pi = p[i] / (w->rho[i] * w->rho[i]);
@@ -172,18 +174,21 @@ int sph_pressure_solve(sph_world *w, double dt) {
         double sens[SPH_MAX_LOADED] = {0};
         double wi_x, wi_y;
         src_velocity(w, i, &wi_x, &wi_y);
+        int fl = w->kind[i] == SPH_FLUID;
+        double lxx = fl ? w->lxx[i] : 1.0, lxy = fl ? w->lxy[i] : 0.0, lyy = fl ? w->lyy[i] : 1.0;
         for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
             int j = w->nb_j[k], s = w->src[j];
             double rs = rhoi + w->rho[j];
             double c = mi * w->m[j] * 8.0 / (rs * rs) * (-w->nb_f[k]);
             double wj_x, wj_y;
             src_velocity(w, j, &wj_x, &wj_y);
-            div += w->m[j] * ((wi_x - wj_x) * w->nb_gx[k] + (wi_y - wj_y) * w->nb_gy[k]);
+            double gx = lxx * w->nb_gx[k] + lxy * w->nb_gy[k], gy = lxy * w->nb_gx[k] + lyy * w->nb_gy[k];
+            div += w->m[j] * ((wi_x - wj_x) * gx + (wi_y - wj_y) * gy);
             for (int q = 0; q < K; q++) {
                 double ax, ay, bx, by;
                 sens_velocity(w, i, loaded[q], &ax, &ay);
                 sens_velocity(w, j, loaded[q], &bx, &by);
-                sens[q] += w->m[j] * ((ax - bx) * w->nb_gx[k] + (ay - by) * w->nb_gy[k]);
+                sens[q] += w->m[j] * ((ax - bx) * gx + (ay - by) * gy);
             }
             if (s == i) continue;
             if (w->row[s] >= 0) {
@@ -296,9 +301,11 @@ void sph_pressure_correct(sph_world *w, double dt) {
             continue;
         }
         double div = 0.0, ui = w->us[i], vi = w->vs[i];
+        double lxx = w->lxx[i], lxy = w->lxy[i], lyy = w->lyy[i];
         for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
             int j = w->nb_j[k];
-            div += w->m[j] * ((ui - w->us[j]) * w->nb_gx[k] + (vi - w->vs[j]) * w->nb_gy[k]);
+            double gx = lxx * w->nb_gx[k] + lxy * w->nb_gy[k], gy = lxy * w->nb_gx[k] + lyy * w->nb_gy[k];
+            div += w->m[j] * ((ui - w->us[j]) * gx + (vi - w->vs[j]) * gy);
         }
         w->rho[i] += dt * div;
         double e = fabs(w->rho[i] / rho0 - 1.0);

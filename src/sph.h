@@ -10,6 +10,8 @@
 
 #include <stddef.h>
 
+#include "sph_pictures.h" /* render, plot, animate: plain data in, PNG out */
+
 #define SPH_VERSION "0.1.0"
 
 typedef struct sph_world sph_world;

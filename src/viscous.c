@@ -34,6 +34,16 @@ void sph_viscous_rheology(sph_world *w) {
             uyx += vol * dv * w->nb_gx[k];
             uyy += vol * dv * w->nb_gy[k];
         }
+        /* renormalised: grad u = (sum V du (x) grad W) L, first-order consistent near a
+         * free surface where the kernel support is truncated */
+        double lxx = w->lxx[i], lxy = w->lxy[i], lyy = w->lyy[i];
+        double cxx = uxx * lxx + uxy * lxy, cxy = uxx * lxy + uxy * lyy;
+        double cyx = uyx * lxx + uyy * lxy, cyy = uyx * lxy + uyy * lyy;
+        uxx = cxx, uxy = cxy, uyx = cyx, uyy = cyy;
+        w->gux[i] = uxx;
+        w->guy[i] = uxy;
+        w->gvx[i] = uyx;
+        w->gvy[i] = uyy;
         double dxx = 2 * uxx, dyy = 2 * uyy, dxy = uxy + uyx;
         double g = sqrt(0.5 * (dxx * dxx + dyy * dyy + 2 * dxy * dxy));
         w->gd[i] = g;
@@ -48,7 +58,7 @@ void sph_viscous_explicit(sph_world *w, double dt) {
     int n = w->n, np = w->nplates;
     double gx = w->par.gravity[0], gy = w->par.gravity[1];
     double fplate[SPH_MAX_PLATES] = {0};
-#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : fplate[:np])
+#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : fplate[:SPH_MAX_PLATES])
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) {
             sph_plate_wall_velocity(w, i, &w->us[i], &w->vs[i]);

@@ -1,0 +1,42 @@
+-- The squeeze-flow test in the paper's scaling (H = U = mu = 1, rho = Re, tau0 = Bn,
+-- m = M): a rectangle of height 1 and width 2a = 1 between two plates, the lower one fixed,
+-- the upper one at constant velocity or under a constant load. Only the half x >= 0 is
+-- simulated, with a symmetry plane at x = 0; forces and masses are the whole sample's.
+local sph = require "sph"
+
+local S = {}
+
+-- Lubrication theory for the whole sample (PHYSICS.md), area A = 1 per unit depth.
+function S.newtonian_force(h, V, mu) return (mu or 1) * (V or 1) / h ^ 6 end
+function S.newtonian_height(t, F, mu) return (1 + 5 * F * t / (mu or 1)) ^ (-1 / 5) end
+function S.plastic_force(h, tau0) return tau0 / (2 * h ^ 3) end
+function S.stop_height(tau0, F) return (tau0 / (2 * F)) ^ (1 / 3) end
+
+-- opts: dx, Re, Bn, M, mode ("velocity" | "load"), V (plate speed, default 1), F (load,
+-- a compressive force is negative, as in the paper), h_min (how thin the sample will get:
+-- sizes the plates), viscosity, shifting, threads, and any other sph.world option via
+-- opts.world.
+function S.build(opts)
+  local dx = opts.dx or 1 / 40
+  local Re, Bn, M = opts.Re or 1, opts.Bn or 0, opts.M or 800
+  local h_min = opts.h_min or 0.3
+  local wopts = { dx = dx, rho = Re, symmetry = { x = 0 } }
+  for k, v in pairs(opts.world or {}) do wopts[k] = v end
+  local w = sph.world(wopts)
+  local mat = Bn > 0 and sph.bingham{ mu = 1, tau0 = Bn, m = M } or sph.newtonian{ mu = 1 }
+  w:fill{ rect = { 0, 0, 0.5, 1 }, material = mat }
+  -- plates: 3h thick (the kernel support), wide enough for the spread sample (a = 1/(2h))
+  local T = math.ceil(3 * w.h / dx - 1e-9) * dx
+  local half = math.max(1.5, 1.25 / (2 * h_min)) + 4 * dx
+  half = math.ceil(half / dx) * dx
+  local bottom = w:plate{ rect = { -half, -T, half, 0 } }
+  local top = w:plate{ rect = { -half, 1, half, 1 + T }, axis = "y" }
+  if (opts.mode or "velocity") == "velocity" then
+    top:velocity(-(opts.V or 1))
+  else
+    top:load(opts.F or -10)
+  end
+  return w, top, bottom, mat
+end
+
+return S

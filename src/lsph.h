@@ -1,0 +1,14 @@
+/* Shared by the Lua binding files (lsph.c, lpictures.c); not part of the C API. */
+#ifndef SPH_LSPH_H
+#define SPH_LSPH_H
+
+#include <lua.h>
+
+#include "sph.h"
+
+#define SPH_LUA_WORLD "sph.world"
+
+/* The open world at stack index idx, or a Lua error ("attempt to use a closed sph.world"). */
+sph_world *sph_lua_checkworld(lua_State *L, int idx);
+
+#endif

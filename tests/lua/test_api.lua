@@ -1,0 +1,131 @@
+-- The Lua surface: argument checks name the argument, closed handles and failed writes
+-- behave as in Lua's own libraries, a raising plate law stops the run with its message.
+local sph = require "sph"
+local T = require "sph.test"
+
+T.case("module", function()
+  T.check(type(sph.version) == "string", "sph.version is a string")
+  T.check(sph.world and sph.bingham and sph.newtonian and sph.herschel_bulkley, "constructors exist")
+end)
+
+T.case("world arguments", function()
+  T.checkerror("dx", "world without dx names dx", sph.world, {})
+  T.checkerror("dx", "world with dx = 0 names dx", sph.world, { dx = 0 })
+  T.checkerror("dx: number expected", "world with a string dx", sph.world, { dx = "a" })
+  T.checkerror("unknown option 'dxx'", "misspelt option is an error", sph.world, { dx = 0.1, dxx = 1 })
+  T.checkerror("viscosity", "bad viscosity", sph.world, { dx = 0.1, viscosity = "magic" })
+  T.checkerror("gravity", "bad gravity", sph.world, { dx = 0.1, gravity = 3 })
+  T.checkerror("periodic", "bad periodic", sph.world, { dx = 0.1, periodic = { x = { 1 } } })
+  T.checkerror("periodic range", "periodic lo >= hi", sph.world, { dx = 0.1, periodic = { x = { 1, 0 } } })
+  T.checkerror("symmetry plane", "periodic and symmetric axis", sph.world,
+    { dx = 0.1, periodic = { x = { 0, 1 } }, symmetry = { x = 0 } })
+  T.checkerror("rho", "negative rho", sph.world, { dx = 0.1, rho = -1 })
+  T.checkerror("table expected", "world needs a table", sph.world, 3)
+end)
+
+T.case("materials", function()
+  T.checkerror("tau0", "bingham without tau0", sph.bingham, { mu = 1, m = 10 })
+  T.checkerror("m: number expected", "bingham without m", sph.bingham, { mu = 1, tau0 = 1 })
+  T.checkerror("mu must be a positive", "negative mu", sph.newtonian, { mu = -1 })
+  T.checkerror("unknown option 'tau'", "newtonian with a stray option", sph.newtonian, { mu = 1, tau = 2 })
+  T.checkerror("n must be", "herschel_bulkley n = 0", sph.herschel_bulkley, { K = 1, n = 0, tau0 = 1, m = 10 })
+  local b = sph.bingham{ mu = 1, tau0 = 2, m = 800 }
+  T.close(b:eta(0), 1 + 2 * 800, 1e-9, "material:eta(0) = mu + tau0 m")
+  T.check(b.model == "bingham" and b.tau0 == 2, "material fields readable")
+  T.checkerror("shear rate", "eta of a negative rate", b.eta, b, -1)
+end)
+
+T.case("fill and plate", function()
+  local w = sph.world{ dx = 0.1 }
+  local water = sph.newtonian{ mu = 1 }
+  T.checkerror("rect", "fill without rect", w.fill, w, { material = water })
+  T.checkerror("rect[4]", "fill with a short rect", w.fill, w, { rect = { 0, 0, 1 }, material = water })
+  T.checkerror("x0 < x1", "fill with an inverted rect", w.fill, w, { rect = { 1, 0, 0, 1 }, material = water })
+  T.checkerror("material", "fill without material", w.fill, w, { rect = { 0, 0, 1, 1 } })
+  T.checkerror("material", "fill with a table as material", w.fill, w, { rect = { 0, 0, 1, 1 }, material = {} })
+  T.check(w:fill{ rect = { 0, 0, 1, 1 }, material = water } == 100, "fill returns the particle count")
+  T.checkerror("axis", "plate with a bad axis", w.plate, w, { rect = { 0, -0.3, 1, 0 }, axis = "z" })
+  T.checkerror("kernel support", "plate thinner than 3h", w.plate, w, { rect = { 0, -0.1, 1, 0 } })
+  T.checkerror("overlaps fluid", "plate over fluid", w.plate, w, { rect = { 0, 0.5, 1, 0.9 } })
+  local bottom = w:plate{ rect = { -1, -0.3, 2, 0 } }
+  local top = w:plate{ rect = { -1, 1, 2, 1.3 }, axis = "y" }
+  T.checkerror("fixed", "a fixed plate cannot take a velocity", bottom.load, bottom, 1)
+  T.checkerror("number or function", "velocity law of the wrong type", top.load, top, "fast")
+  top:velocity(-1)
+  T.close(top.velocity, -1, 0, "plate.velocity reads the law's value")
+  T.close(top.position, 1, 1e-12, "plate.position is the face touching the fluid")
+  T.close(bottom.position, 0, 1e-12, "bottom plate's face is its upper edge")
+  T.check(top.mass > 0, "plate.mass defaults to its particles' mass")
+  top.mass = 3
+  T.close(top.mass, 3, 0, "plate.mass is settable")
+  T.checkerror("cannot be set", "plate.force is read-only", function() top.force = 1 end)
+  T.checkerror("positive", "plate mass must be positive", function() top.mass = -1 end)
+  T.checkerror("unknown field 'bogus'", "field with an unknown name", w.field, w, "bogus")
+  local xs = w:field("x")
+  T.check(#xs == 100, "field returns one value per fluid particle")
+  local st = w:stats()
+  T.check(st.fluid == 100 and st.particles > 100, "stats counts particles")
+end)
+
+T.case("laws", function()
+  local w = sph.world{ dx = 0.1 }
+  w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
+  w:plate{ rect = { -1, -0.3, 2, 0 } }
+  local top = w:plate{ rect = { -1, 1, 2, 1.3 }, axis = "y" }
+  local seen
+  top:velocity(function(t, plate) seen = plate; return -0.5 end)
+  w:step()
+  T.check(seen == top, "a law receives the plate handle")
+  T.close(top.velocity, -0.5, 0, "a velocity law sets the plate's velocity")
+  top:velocity(function(t) error("law exploded at " .. t) end)
+  T.checkerror("law exploded", "an error in a law stops step with its message", w.step, w)
+  T.checkerror("law exploded", "an error in a law stops run with its message", w.run, w, { until_t = 1 })
+  top:load(function() return "heavy" end)
+  T.checkerror("a finite number expected", "a law returning a string", w.step, w)
+  T.checkerror("until_t", "run without until_t", w.run, w, {})
+  T.checkerror("each", "run with a non-function each", w.run, w, { until_t = 1, each = 3 })
+end)
+
+T.case("run schedule", function()
+  local w = sph.world{ dx = 0.1 }
+  w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
+  w:plate{ rect = { -1, -0.3, 2, 0 } }
+  local times = {}
+  w:run{ until_t = 0.05, every = 0.01, each = function(ww) times[#times + 1] = ww.t end }
+  T.check(#times == 5, "run calls each at every output time", #times .. " calls")
+  T.close(times[5] or 0, 0.05, 1e-12, "run lands on the output times")
+  T.close(w.t, 0.05, 1e-12, "run ends at until_t")
+  local n = 0
+  w:run{ until_t = 1, every = 0.01, each = function() n = n + 1; return false end }
+  T.check(n == 1, "each returning false stops the run")
+end)
+
+T.case("files and closing", function()
+  local w = sph.world{ dx = 0.1 }
+  w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
+  local ok, msg = w:write_csv("/nonexistent-dir/p.csv")
+  T.check(ok == nil and msg:find("nonexistent", 1, true), "write_csv to a bad path gives nil and a message")
+  ok, msg = w:write_vtk("/nonexistent-dir/p.vtk")
+  T.check(ok == nil and msg:find("nonexistent", 1, true), "write_vtk to a bad path gives nil and a message")
+  local tmp = os.tmpname()
+  T.check(w:write_vtk(tmp) == true, "write_vtk returns true")
+  local f = io.open(tmp)
+  local head = f:read("l")
+  f:close()
+  T.check(head == "# vtk DataFile Version 3.0", "VTK header")
+  T.check(w:write_csv(tmp) == true, "write_csv returns true")
+  local lines = 0
+  for _ in io.lines(tmp) do lines = lines + 1 end
+  T.check(lines == 101, "CSV has a header and one row per particle")
+  os.remove(tmp)
+  w:close()
+  T.checkerror("closed sph.world", "a closed world raises", function() w:step() end)
+  T.checkerror("closed sph.world", "closing twice raises, as for a closed file", function() w:close() end)
+end)
+
+T.case("errors in the engine", function()
+  local w = sph.world{ dx = 0.1 }
+  T.checkerror("no fluid", "stepping an empty world", w.step, w)
+end)
+
+T.done()
