@@ -2,13 +2,16 @@
  * fixed or moving along one axis under a velocity law or a load law. No-slip follows
  * Morris, Fox & Zhu (1997): a wall particle B seen from fluid particle a carries the
  * velocity u_B = u_w - (d_B / d_a)(u_a - u_w), so u_a - u_B = beta (u_a - u_w) with
- * beta = 1 + d_B / d_a clamped to at most 1.5. */
+ * beta = 1 + d_B / d_a. Morris clamps beta at 1.5; that clamp makes every wall row but
+ * none look like a half-slip wall (measured: Couette start-up error 0.024 U at dx = 1/20,
+ * an effective slip length of about 0.4 dx in the squeeze). Here d_a is instead floored at
+ * dx / 2, the lattice distance of the first fluid row, which keeps the extrapolation exact
+ * for every wall row (beta up to 6 with three rows) and bounded when a particle comes
+ * close to the wall (Couette error 0.0028 U at dx = 1/20). */
 #include "internal.h"
 #include "kernel.h"
 
 #include <math.h>
-
-#define BETA_MAX 1.5
 
 int sph_plate_fill(sph_world *w, const double rect[4], int axis) {
     const sph_params *P = &w->par;
@@ -132,9 +135,8 @@ double sph_plate_noslip(const sph_world *w, int a, int b) {
         da = fabs(xa - face);
         db = fabs(xb - face);
     }
-    double floor_a = 1e-3 * w->dx;
-    double beta = 1.0 + db / (da > floor_a ? da : floor_a);
-    return beta < BETA_MAX ? beta : BETA_MAX;
+    double floor_a = 0.5 * w->dx;
+    return 1.0 + db / (da > floor_a ? da : floor_a);
 }
 
 void sph_plate_move(sph_world *w, int k, double dpos) {
