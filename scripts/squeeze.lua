@@ -7,6 +7,9 @@
 -- the run when the gap is thinner), viscosity, shifting, threads, out (folder).
 -- Writes out/series.csv: t, h, plate velocity, plate force, solver iterations, max
 -- density error, and the lubrication reference (Newtonian: mu V / h^6 or h(t) under load).
+-- frames=N (default 0): N yield-state frames evenly over the run into out/frames/f_0001.png
+-- ..., the animation out/squeeze.png (fps, default 10; frame_width, default 800) and the
+-- plots out/h.png and out/force.png (plots=1 gives the plots without frames).
 local sph = require "sph"
 local squeeze = require "sph.squeeze"
 local o = ... or {}
@@ -19,7 +22,7 @@ local out = o.out or "out/squeeze"
 local h_stop = o.h_stop or 0.05
 
 local world_opts = { threads = o.threads, viscosity = o.viscosity, shifting = o.shifting }
-local w, top = squeeze.build{ dx = dx, Re = Re, Bn = Bn, M = M, mode = mode, F = o.F or -10,
+local w, top, bottom = squeeze.build{ dx = dx, Re = Re, Bn = Bn, M = M, mode = mode, F = o.F or -10,
                               V = o.V or 1, h_min = o.h_min or 0.25, world = world_opts }
 
 os.execute("mkdir -p '" .. out .. "'")
@@ -30,12 +33,37 @@ local function ref(h, t)
   if mode == "velocity" then return squeeze.newtonian_force(h, o.V or 1) end
   return squeeze.newtonian_height(t, -(o.F or -10))
 end
+-- frames: N renders evenly over [0, t_end], at the first output at or after each time
+local nframes = math.floor(o.frames or 0)
+local frames = {}
+local frame_opts
+if nframes > 0 then
+  os.execute("mkdir -p '" .. out .. "/frames'")
+  local b, t = bottom.rect, top.rect -- a fixed view: the plates' width, the initial gap
+  local pad = 0.02 * (t[4] - b[2])
+  local view = { b[1], b[2] - pad, b[3], t[4] + pad }
+  local fw = math.floor(o.frame_width or 800)
+  local fh = math.max(120, math.floor(fw * (view[4] - view[2]) / (view[3] - view[1])) + 40)
+  frame_opts = { width = fw, height = fh, view = view, color = "yield",
+                 label = string.format("Re=%g Bn=%g", Re, Bn) }
+end
+local function frame(w)
+  if nframes == 0 or #frames >= nframes then return end
+  local tk = nframes > 1 and t_end * #frames / (nframes - 1) or 0
+  if w.t < tk - 1e-9 * t_end then return end
+  frame_opts.file = string.format("%s/frames/f_%04d.png", out, #frames + 1)
+  assert(w:render(frame_opts))
+  frames[#frames + 1] = frame_opts.file
+end
+local ts, hs, fs, refs = {}, {}, {}, {}
 local function record(w)
   local s = w:stats()
   local h = top.position
   series:write(string.format("%.8g,%.8g,%.8g,%.8g,%d,%.4e,%.8g\n", w.t, h, top.velocity, top.force,
     s.solver_iterations, s.max_density_error, ref(h, w.t)))
   series:flush()
+  ts[#ts + 1], hs[#hs + 1], fs[#fs + 1], refs[#refs + 1] = w.t, h, top.force, ref(h, w.t)
+  frame(w)
   if h < h_stop then return false end
 end
 
@@ -44,9 +72,36 @@ print(string.format("squeeze: mode=%s Re=%g Bn=%g M=%g dx=%g: %d fluid particles
 record(w)
 w:run{ until_t = t_end, every = every, each = record }
 series:close()
+if nframes > 0 and #frames < nframes then -- the run ended early or between outputs: show its end
+  nframes = #frames + 1
+  frame_opts.file = string.format("%s/frames/f_%04d.png", out, #frames + 1)
+  assert(w:render(frame_opts))
+  frames[#frames + 1] = frame_opts.file
+end
 local s = w:stats()
 print(string.format("done: t=%.4g h=%.4f force=%.5g  %d steps in %.1f s (%.0f steps/s, %.2f us per particle-step)  "
   .. "mean pressure iterations %.1f  max density error %.2e",
   w.t, top.position, top.force, w.steps, s.wall_time, w.steps / s.wall_time,
   1e6 * s.wall_time / (w.steps * s.particles), s.solver_iterations_total / w.steps, s.max_density_error))
 print("wrote " .. out .. "/series.csv")
+
+if #frames > 0 then
+  assert(sph.animate{ frames = frames, file = out .. "/squeeze.png", fps = o.fps or 10 })
+  print(string.format("wrote %d frames %s/frames/f_*.png and %s/squeeze.png", #frames, out, out))
+end
+if (o.plots or (nframes > 0 and 1 or 0)) ~= 0 then
+  -- the lubrication reference where it is finite: a force at constant velocity, a gap under load
+  local rt, rv = {}, {}
+  for i = 1, #ts do
+    if refs[i] == refs[i] and math.abs(refs[i]) < math.huge then rt[#rt + 1], rv[#rv + 1] = ts[i], refs[i] end
+  end
+  local title = string.format("%s: Re=%g Bn=%g M=%g dx=%g", mode, Re, Bn, M, dx)
+  local hser = { { x = ts, y = hs, label = "SPH" } }
+  local fser = { { x = ts, y = fs, label = "SPH" } }
+  if #rt > 0 then
+    table.insert(mode == "load" and hser or fser, { x = rt, y = rv, label = "lubrication" })
+  end
+  assert(sph.plot{ file = out .. "/h.png", xlabel = "t", ylabel = "h", title = title, series = hser })
+  assert(sph.plot{ file = out .. "/force.png", xlabel = "t", ylabel = "plate force", title = title, series = fser })
+  print("wrote " .. out .. "/h.png and " .. out .. "/force.png")
+end

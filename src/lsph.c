@@ -707,5 +707,6 @@ int luaopen_sph(lua_State *L) {
     lua_setfield(L, -2, "version");
     lua_pushinteger(L, omp_get_num_procs());
     lua_setfield(L, -2, "cores");
+    sph_lua_pictures_open(L);
     return 1;
 }

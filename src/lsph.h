@@ -11,4 +11,8 @@
 /* The open world at stack index idx, or a Lua error ("attempt to use a closed sph.world"). */
 sph_world *sph_lua_checkworld(lua_State *L, int idx);
 
+/* Pictures (lpictures.c): with the module table on top, add sph.plot, sph.animate and the
+   world method render. */
+void sph_lua_pictures_open(lua_State *L);
+
 #endif
