@@ -59,8 +59,8 @@ local ts, hs, fs, refs = {}, {}, {}, {}
 local function record(w)
   local s = w:stats()
   local h = top.position
-  series:write(string.format("%.8g,%.8g,%.8g,%.8g,%d,%.4e,%.8g\n", w.t, h, top.velocity, top.force,
-    s.solver_iterations, s.max_density_error, ref(h, w.t)))
+  series:write(string.format("%.8g,%.8g,%.8g,%.8g,%d,%.4e,%s\n", w.t, h, top.velocity, top.force,
+    s.solver_iterations, s.max_density_error, ref(h, w.t) == ref(h, w.t) and string.format("%.8g", ref(h, w.t)) or ""))
   series:flush()
   ts[#ts + 1], hs[#hs + 1], fs[#fs + 1], refs[#refs + 1] = w.t, h, top.force, ref(h, w.t)
   frame(w)
