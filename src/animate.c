@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "message.h"
 #include "sph_pictures.h"
 
 typedef unsigned long u32; /* at least 32 bits; values are kept below 2^32 */
@@ -35,16 +36,6 @@ typedef struct {
     u32 seq; /* APNG sequence number: fcTL and fdAT chunks, from 0 */
     int werr;
 } writer;
-
-static int fail(char *err, size_t errlen, const char *fmt, ...) {
-    va_list ap;
-    if (err && errlen) {
-        va_start(ap, fmt);
-        vsnprintf(err, errlen, fmt, ap);
-        va_end(ap);
-    }
-    return -1;
-}
 
 /* CRC-32 of ISO 3309 / ITU-T V.42 as in the PNG specification (Annex D): reflected
    polynomial 0xedb88320, register preset to all ones and inverted at the end. */
@@ -81,7 +72,7 @@ static int read_all(const char *path, png_file *f, char *err, size_t errlen) {
     unsigned char *tmp;
     memset(f, 0, sizeof *f);
     if (!fp)
-        return fail(err, errlen, "cannot read frame '%s': %s", path, strerror(errno));
+        return sph_message_set(err, errlen, "cannot read frame '%s': %s", path, strerror(errno));
     f->buf = malloc(cap);
     while (f->buf) {
         n = fread(f->buf + f->len, 1, cap - f->len, fp);
@@ -95,13 +86,13 @@ static int read_all(const char *path, png_file *f, char *err, size_t errlen) {
     }
     if (!f->buf) {
         fclose(fp);
-        return fail(err, errlen, "out of memory reading frame '%s'", path);
+        return sph_message_set(err, errlen, "out of memory reading frame '%s'", path);
     }
     if (ferror(fp)) {
         fclose(fp);
         free(f->buf);
         f->buf = NULL;
-        return fail(err, errlen, "cannot read frame '%s': %s", path, strerror(errno));
+        return sph_message_set(err, errlen, "cannot read frame '%s': %s", path, strerror(errno));
     }
     fclose(fp);
     return 0;
@@ -111,18 +102,18 @@ static int read_all(const char *path, png_file *f, char *err, size_t errlen) {
 static int parse(const char *path, png_file *f, const u32 crc[256], char *err, size_t errlen) {
     size_t pos = 8, len;
     if (f->len < 8 || memcmp(f->buf, png_signature, 8) != 0)
-        return fail(err, errlen, "frame '%s' is not a PNG file", path);
+        return sph_message_set(err, errlen, "frame '%s' is not a PNG file", path);
     for (;;) {
         const unsigned char *c = f->buf + pos;
         if (f->len - pos < 12)
-            return fail(err, errlen, "frame '%s' is truncated (no IEND chunk)", path);
+            return sph_message_set(err, errlen, "frame '%s' is truncated (no IEND chunk)", path);
         len = get32(c);
         if (len > f->len - pos - 12)
-            return fail(err, errlen, "frame '%s' is truncated (chunk at byte %zu)", path, pos);
+            return sph_message_set(err, errlen, "frame '%s' is truncated (chunk at byte %zu)", path, pos);
         if ((crc_update(crc, 0xffffffffUL, c + 4, len + 4) ^ 0xffffffffUL) != get32(c + 8 + len))
-            return fail(err, errlen, "frame '%s' is damaged (bad CRC at byte %zu)", path, pos);
+            return sph_message_set(err, errlen, "frame '%s' is damaged (bad CRC at byte %zu)", path, pos);
         if (pos == 8 && (memcmp(c + 4, "IHDR", 4) != 0 || len != 13))
-            return fail(err, errlen, "frame '%s' does not start with an IHDR chunk", path);
+            return sph_message_set(err, errlen, "frame '%s' does not start with an IHDR chunk", path);
         if (pos == 8)
             f->ihdr = c + 8;
         else if (!memcmp(c + 4, "PLTE", 4))
@@ -134,7 +125,7 @@ static int parse(const char *path, png_file *f, const u32 crc[256], char *err, s
         pos += len + 12;
     }
     if (!f->first_idat)
-        return fail(err, errlen, "frame '%s' has no image data (IDAT)", path);
+        return sph_message_set(err, errlen, "frame '%s' has no image data (IDAT)", path);
     return 0;
 }
 
@@ -195,10 +186,10 @@ int sph_animate_delay(double fps, unsigned *num, unsigned *den, char *err, size_
     u32 h = 1, k = 0, h2 = 0, k2 = 1, hn, kn;
     int i;
     if (!isfinite(fps) || !(fps > 0))
-        return fail(err, errlen, "fps must be a positive number (got %g)", fps);
+        return sph_message_set(err, errlen, "fps must be a positive number (got %g)", fps);
     d = 1 / fps;
     if (d > 65535 || d < 1.0 / 65535)
-        return fail(err, errlen, "fps %g is out of range (1/65535 .. 65535)", fps);
+        return sph_message_set(err, errlen, "fps %g is out of range (1/65535 .. 65535)", fps);
     if (fps == floor(fps)) { /* the common case, exactly */
         *num = 1, *den = (unsigned)fps;
         return 0;
@@ -216,7 +207,7 @@ int sph_animate_delay(double fps, unsigned *num, unsigned *den, char *err, size_
         x = 1 / (x - a);
     }
     if (h == 0 || k == 0)
-        return fail(err, errlen, "fps %g has no delay fraction within 16 bits", fps);
+        return sph_message_set(err, errlen, "fps %g has no delay fraction within 16 bits", fps);
     *num = (unsigned)h, *den = (unsigned)k;
     return 0;
 }
@@ -230,18 +221,18 @@ int sph_animate_png(const char *const *frames, size_t nframes, double fps, int l
     size_t i, pos;
     int rc = 0;
     if (!frames || nframes == 0)
-        return fail(err, errlen, "no frames to animate");
+        return sph_message_set(err, errlen, "no frames to animate");
     if (nframes > 0x7fffffffUL)
-        return fail(err, errlen, "too many frames (%zu)", nframes);
+        return sph_message_set(err, errlen, "too many frames (%zu)", nframes);
     if (!file || !*file)
-        return fail(err, errlen, "no output file name");
+        return sph_message_set(err, errlen, "no output file name");
     if (loops < 0)
-        return fail(err, errlen, "loops must be >= 0 (0: forever), got %d", loops);
+        return sph_message_set(err, errlen, "loops must be >= 0 (0: forever), got %d", loops);
     for (i = 0; i < nframes; i++) {
         if (!frames[i])
-            return fail(err, errlen, "frame %zu has no file name", i + 1);
+            return sph_message_set(err, errlen, "frame %zu has no file name", i + 1);
         if (!strcmp(frames[i], file)) /* it would be truncated before it is read */
-            return fail(err, errlen, "output '%s' is also frame %zu", file, i + 1);
+            return sph_message_set(err, errlen, "output '%s' is also frame %zu", file, i + 1);
     }
     if (sph_animate_delay(fps, &num, &den, err, errlen))
         return -1;
@@ -256,7 +247,7 @@ int sph_animate_png(const char *const *frames, size_t nframes, double fps, int l
     w.fp = fopen(file, "wb");
     if (!w.fp) {
         free(first.buf);
-        return fail(err, errlen, "cannot open '%s' for writing: %s", file, strerror(errno));
+        return sph_message_set(err, errlen, "cannot open '%s' for writing: %s", file, strerror(errno));
     }
     if (fwrite(png_signature, 1, 8, w.fp) != 8)
         w.werr = 1;
@@ -276,20 +267,20 @@ int sph_animate_png(const char *const *frames, size_t nframes, double fps, int l
         if (rc == 0)
             rc = parse(frames[i], &cur, w.crc_table, err, errlen);
         if (rc == 0 && memcmp(cur.ihdr, first.ihdr, 8) != 0)
-            rc = fail(err, errlen,
+            rc = sph_message_set(err, errlen,
                       "frame '%s' is %lux%lu but frame '%s' is %lux%lu: all frames "
                       "must have the same size",
                       frames[i], get32(cur.ihdr), get32(cur.ihdr + 4), frames[0], get32(first.ihdr),
                       get32(first.ihdr + 4));
         if (rc == 0 && memcmp(cur.ihdr, first.ihdr, 13) != 0)
-            rc = fail(err, errlen,
+            rc = sph_message_set(err, errlen,
                       "frame '%s' differs from frame '%s' in bit depth, colour "
                       "type or interlacing",
                       frames[i], frames[0]);
         if (rc == 0 && first.plte &&
             (!cur.plte || cur.plte_len != first.plte_len ||
              memcmp(cur.plte, first.plte, first.plte_len) != 0))
-            rc = fail(err, errlen, "frame '%s' has a different palette from frame '%s'", frames[i],
+            rc = sph_message_set(err, errlen, "frame '%s' has a different palette from frame '%s'", frames[i],
                       frames[0]);
         if (rc == 0) {
             put_fctl(&w, first.ihdr, num, den);
@@ -301,9 +292,9 @@ int sph_animate_png(const char *const *frames, size_t nframes, double fps, int l
     if (rc == 0)
         put_chunk(&w, "IEND", NULL, 0, NULL, 0);
     if (rc == 0 && w.werr)
-        rc = fail(err, errlen, "cannot write '%s': %s", file, strerror(errno));
+        rc = sph_message_set(err, errlen, "cannot write '%s': %s", file, strerror(errno));
     if (fclose(w.fp) != 0 && rc == 0)
-        rc = fail(err, errlen, "cannot write '%s': %s", file, strerror(errno));
+        rc = sph_message_set(err, errlen, "cannot write '%s': %s", file, strerror(errno));
     if (rc != 0)
         remove(file); /* no half animation left behind */
     return rc;

@@ -11,43 +11,6 @@
 
 /* ---- option helpers (the same conventions as lsph.c) ---------------------------- */
 
-/* Reject unknown keys, so a misspelt option is an error, not a silent default. */
-static void opt_only(lua_State *L, int idx, const char *fname, const char *const *keys) {
-    lua_pushnil(L);
-    while (lua_next(L, idx)) {
-        lua_pop(L, 1);
-        int ok = 0;
-        if (lua_type(L, -1) == LUA_TSTRING) {
-            const char *k = lua_tostring(L, -1);
-            for (int i = 0; keys[i]; i++)
-                if (!strcmp(k, keys[i])) ok = 1;
-        }
-        if (!ok) {
-            luaL_Buffer b;
-            luaL_buffinit(L, &b);
-            for (int i = 0; keys[i]; i++) {
-                if (i) luaL_addstring(&b, ", ");
-                luaL_addstring(&b, keys[i]);
-            }
-            luaL_pushresult(&b);
-            luaL_error(L, "bad argument to '%s' (unknown option '%s'; options are %s)", fname,
-                       lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2) : luaL_typename(L, -2),
-                       lua_tostring(L, -1));
-        }
-    }
-}
-
-static double opt_number(lua_State *L, int idx, const char *fname, const char *key, double def) {
-    double v = def;
-    if (lua_getfield(L, idx, key) != LUA_TNIL) {
-        if (!lua_isnumber(L, -1))
-            luaL_error(L, "bad argument to '%s' (%s: number expected, got %s)", fname, key, luaL_typename(L, -1));
-        v = lua_tonumber(L, -1);
-    }
-    lua_pop(L, 1);
-    return v;
-}
-
 /* An integer option in [lo, hi]. */
 static int opt_int(lua_State *L, int idx, const char *fname, const char *key, int def, int lo, int hi) {
     int v = def;
@@ -129,7 +92,7 @@ static int w_render(lua_State *L) {
                                        "label", "range", "mirror", "radius", "colormap", 0};
     sph_world *w = sph_lua_checkworld(L, 1);
     luaL_checktype(L, 2, LUA_TTABLE);
-    opt_only(L, 2, "render", keys);
+    sph_lua_opt_only(L, 2, "render", keys);
     const sph_params *par = sph_world_params(w);
     sph_render_spec s;
     sph_render_defaults(&s);
@@ -176,7 +139,7 @@ static int w_render(lua_State *L) {
     s.colorbar = opt_bool(L, 2, "render", "colorbar", 1);
     s.mirror = opt_bool(L, 2, "render", "mirror", par->symmetry[0] != 0);
     s.mirror_x = par->symmetry[0] ? par->sym_at[0] : 0;
-    s.radius = opt_number(L, 2, "render", "radius", 0.55 * par->dx);
+    s.radius = sph_lua_opt_number(L, 2, "render", "radius", 0.55 * par->dx);
     if (!(s.radius > 0 && isfinite(s.radius)))
         luaL_error(L, "bad argument to 'render' (radius: positive number expected, got %f)", s.radius);
 
@@ -254,7 +217,7 @@ static int l_plot(lua_State *L) {
     static const char *const skeys[] = {"x", "y", "label", "style", 0};
     static const char *const styles[] = {"line", "markers", "both", 0};
     luaL_checktype(L, 1, LUA_TTABLE);
-    opt_only(L, 1, "plot", keys);
+    sph_lua_opt_only(L, 1, "plot", keys);
     sph_plot_spec s;
     sph_plot_defaults(&s);
     const char *file = opt_string(L, 1, "plot", "file", NULL);
@@ -333,10 +296,10 @@ static int l_plot(lua_State *L) {
 static int l_animate(lua_State *L) {
     static const char *const keys[] = {"frames", "file", "fps", "loop", 0};
     luaL_checktype(L, 1, LUA_TTABLE);
-    opt_only(L, 1, "animate", keys);
+    sph_lua_opt_only(L, 1, "animate", keys);
     const char *file = opt_string(L, 1, "animate", "file", NULL);
     if (!file) luaL_error(L, "bad argument to 'animate' (file: string expected, got no value)");
-    double fps = opt_number(L, 1, "animate", "fps", 25);
+    double fps = sph_lua_opt_number(L, 1, "animate", "fps", 25);
     int loop = opt_int(L, 1, "animate", "loop", 0, 0, 65535);
     char err[512] = "";
     unsigned num, den;

@@ -26,51 +26,6 @@ typedef struct {
 
 /* ---- helpers -------------------------------------------------------------------- */
 
-/* Numeric field of the options table at idx, with a default; errors name the field. */
-static double opt_number(lua_State *L, int idx, const char *fname, const char *key, double def) {
-    double v = def;
-    int t = lua_getfield(L, idx, key);
-    if (t != LUA_TNIL) {
-        if (!lua_isnumber(L, -1))
-            luaL_error(L, "bad argument to '%s' (%s: number expected, got %s)", fname, key, luaL_typename(L, -1));
-        v = lua_tonumber(L, -1);
-    }
-    lua_pop(L, 1);
-    return v;
-}
-
-static int opt_present(lua_State *L, int idx, const char *key) {
-    int t = lua_getfield(L, idx, key);
-    lua_pop(L, 1);
-    return t != LUA_TNIL;
-}
-
-/* Reject unknown keys, so a misspelt option is an error, not a silent default. */
-static void opt_only(lua_State *L, int idx, const char *fname, const char *const *keys) {
-    lua_pushnil(L);
-    while (lua_next(L, idx)) {
-        lua_pop(L, 1);
-        int ok = 0;
-        if (lua_type(L, -1) == LUA_TSTRING) {
-            const char *k = lua_tostring(L, -1);
-            for (int i = 0; keys[i]; i++)
-                if (!strcmp(k, keys[i])) ok = 1;
-        }
-        if (!ok) {
-            luaL_Buffer b;
-            luaL_buffinit(L, &b);
-            for (int i = 0; keys[i]; i++) {
-                if (i) luaL_addstring(&b, ", ");
-                luaL_addstring(&b, keys[i]);
-            }
-            luaL_pushresult(&b);
-            luaL_error(L, "bad argument to '%s' (unknown option '%s'; options are %s)", fname,
-                       lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2) : luaL_typename(L, -2),
-                       lua_tostring(L, -1));
-        }
-    }
-}
-
 /* rect = {x0, y0, x1, y1} */
 static void opt_rect(lua_State *L, int idx, const char *fname, double r[4]) {
     if (lua_getfield(L, idx, "rect") != LUA_TTABLE)
@@ -111,15 +66,15 @@ static int new_material(lua_State *L, sph_model model, const char *fname) {
     memset(&mat, 0, sizeof mat);
     mat.model = model;
     const char *const *keys = model == SPH_NEWTONIAN ? nk : model == SPH_BINGHAM ? bk : hk;
-    opt_only(L, 1, fname, keys);
+    sph_lua_opt_only(L, 1, fname, keys);
     for (int i = 0; keys[i]; i++)
-        if (!opt_present(L, 1, keys[i]))
+        if (!sph_lua_opt_present(L, 1, keys[i]))
             luaL_error(L, "bad argument to '%s' (%s: number expected, got no value)", fname, keys[i]);
-    mat.mu = opt_number(L, 1, fname, "mu", 0);
-    mat.tau0 = opt_number(L, 1, fname, "tau0", 0);
-    mat.m = opt_number(L, 1, fname, "m", 0);
-    mat.K = opt_number(L, 1, fname, "K", 0);
-    mat.n = opt_number(L, 1, fname, "n", 1);
+    mat.mu = sph_lua_opt_number(L, 1, fname, "mu", 0);
+    mat.tau0 = sph_lua_opt_number(L, 1, fname, "tau0", 0);
+    mat.m = sph_lua_opt_number(L, 1, fname, "m", 0);
+    mat.K = sph_lua_opt_number(L, 1, fname, "K", 0);
+    mat.n = sph_lua_opt_number(L, 1, fname, "n", 1);
     const char *bad = sph_rheology_check(&mat);
     if (bad) luaL_error(L, "bad argument to '%s' (%s)", fname, bad);
     sph_material *ud = lua_newuserdatauv(L, sizeof *ud, 0);
@@ -190,23 +145,23 @@ static int l_world(lua_State *L) {
                                        "cfl", "cvisc", "cforce", "dt_max", "periodic", "symmetry",
                                        "threads", "tol", "max_iter", "surface", "density_relax", 0};
     luaL_checktype(L, 1, LUA_TTABLE);
-    opt_only(L, 1, "world", keys);
+    sph_lua_opt_only(L, 1, "world", keys);
     sph_params p;
     sph_params_default(&p);
-    if (!opt_present(L, 1, "dx")) luaL_error(L, "bad argument to 'world' (dx: number expected, got no value)");
-    p.dx = opt_number(L, 1, "world", "dx", 0);
-    p.h = opt_number(L, 1, "world", "h", 0);
-    p.rho0 = opt_number(L, 1, "world", "rho", 1);
-    p.shifting = opt_number(L, 1, "world", "shifting", 0);
-    p.cfl = opt_number(L, 1, "world", "cfl", p.cfl);
-    p.cvisc = opt_number(L, 1, "world", "cvisc", p.cvisc);
-    p.cforce = opt_number(L, 1, "world", "cforce", p.cforce);
-    p.dt_max = opt_number(L, 1, "world", "dt_max", 0);
-    p.threads = (int)opt_number(L, 1, "world", "threads", 0);
-    p.tol = opt_number(L, 1, "world", "tol", p.tol);
-    p.max_iter = (int)opt_number(L, 1, "world", "max_iter", p.max_iter);
-    p.surface_div = opt_number(L, 1, "world", "surface", p.surface_div);
-    p.density_relax = opt_number(L, 1, "world", "density_relax", p.density_relax);
+    if (!sph_lua_opt_present(L, 1, "dx")) luaL_error(L, "bad argument to 'world' (dx: number expected, got no value)");
+    p.dx = sph_lua_opt_number(L, 1, "world", "dx", 0);
+    p.h = sph_lua_opt_number(L, 1, "world", "h", 0);
+    p.rho0 = sph_lua_opt_number(L, 1, "world", "rho", 1);
+    p.shifting = sph_lua_opt_number(L, 1, "world", "shifting", 0);
+    p.cfl = sph_lua_opt_number(L, 1, "world", "cfl", p.cfl);
+    p.cvisc = sph_lua_opt_number(L, 1, "world", "cvisc", p.cvisc);
+    p.cforce = sph_lua_opt_number(L, 1, "world", "cforce", p.cforce);
+    p.dt_max = sph_lua_opt_number(L, 1, "world", "dt_max", 0);
+    p.threads = (int)sph_lua_opt_number(L, 1, "world", "threads", 0);
+    p.tol = sph_lua_opt_number(L, 1, "world", "tol", p.tol);
+    p.max_iter = (int)sph_lua_opt_number(L, 1, "world", "max_iter", p.max_iter);
+    p.surface_div = sph_lua_opt_number(L, 1, "world", "surface", p.surface_div);
+    p.density_relax = sph_lua_opt_number(L, 1, "world", "density_relax", p.density_relax);
     if (!(p.shifting >= 0)) luaL_error(L, "bad argument to 'world' (shifting: number >= 0 expected)");
     if (!(p.dx > 0)) luaL_error(L, "bad argument to 'world' (dx: positive number expected, got %f)", p.dx);
     if (p.threads < 0) luaL_error(L, "bad argument to 'world' (threads: number >= 1 expected)");
@@ -289,7 +244,7 @@ static int w_fill(lua_State *L) {
     lworld *lw = check_world(L, 1);
     static const char *const keys[] = {"rect", "material", 0};
     luaL_checktype(L, 2, LUA_TTABLE);
-    opt_only(L, 2, "fill", keys);
+    sph_lua_opt_only(L, 2, "fill", keys);
     double r[4];
     opt_rect(L, 2, "fill", r);
     lua_getfield(L, 2, "material");
@@ -307,7 +262,7 @@ static int w_plate(lua_State *L) {
     lworld *lw = check_world(L, 1);
     static const char *const keys[] = {"rect", "axis", "mass", 0};
     luaL_checktype(L, 2, LUA_TTABLE);
-    opt_only(L, 2, "plate", keys);
+    sph_lua_opt_only(L, 2, "plate", keys);
     double r[4];
     opt_rect(L, 2, "plate", r);
     int axis = -1;
@@ -319,8 +274,8 @@ static int w_plate(lua_State *L) {
         axis = a[0] == 'x' ? 0 : 1;
     }
     lua_pop(L, 1);
-    double mass = opt_number(L, 2, "plate", "mass", 0);
-    if (opt_present(L, 2, "mass") && !(mass > 0))
+    double mass = sph_lua_opt_number(L, 2, "plate", "mass", 0);
+    if (sph_lua_opt_present(L, 2, "mass") && !(mass > 0))
         luaL_error(L, "bad argument to 'plate' (mass: positive number expected)");
     int k = sph_world_plate(lw->w, r, axis);
     if (k < 0) return engine_error(L, lw->w);
@@ -393,11 +348,11 @@ static int w_run(lua_State *L) {
     lworld *lw = check_world(L, 1);
     static const char *const keys[] = {"until_t", "every", "each", "progress", "dt", 0};
     luaL_checktype(L, 2, LUA_TTABLE);
-    opt_only(L, 2, "run", keys);
-    if (!opt_present(L, 2, "until_t")) luaL_error(L, "bad argument to 'run' (until_t: number expected, got no value)");
-    double until_t = opt_number(L, 2, "run", "until_t", 0);
-    double every = opt_number(L, 2, "run", "every", 0);
-    double fixed_dt = opt_number(L, 2, "run", "dt", 0);
+    sph_lua_opt_only(L, 2, "run", keys);
+    if (!sph_lua_opt_present(L, 2, "until_t")) luaL_error(L, "bad argument to 'run' (until_t: number expected, got no value)");
+    double until_t = sph_lua_opt_number(L, 2, "run", "until_t", 0);
+    double every = sph_lua_opt_number(L, 2, "run", "every", 0);
+    double fixed_dt = sph_lua_opt_number(L, 2, "run", "dt", 0);
     if (!(every >= 0)) luaL_error(L, "bad argument to 'run' (every: number >= 0 expected)");
     int t = lua_getfield(L, 2, "each");
     if (t != LUA_TNIL && t != LUA_TFUNCTION)

@@ -15,4 +15,11 @@ sph_world *sph_lua_checkworld(lua_State *L, int idx);
    world method render. */
 void sph_lua_pictures_open(lua_State *L);
 
+/* Options tables (loptions.c). Errors name the function and the option. */
+/* Reject keys of the table at idx that are not in the NULL-terminated keys. */
+void sph_lua_opt_only(lua_State *L, int idx, const char *fname, const char *const *keys);
+/* Numeric field key of the table at idx, or def when absent. */
+double sph_lua_opt_number(lua_State *L, int idx, const char *fname, const char *key, double def);
+int sph_lua_opt_present(lua_State *L, int idx, const char *key);
+
 #endif

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "message.h"
 #include "sph_pictures.h"
 
 #define MAX_TICKS 160
@@ -37,16 +38,6 @@ typedef struct {
     double fs;
     tickset xt, yt;
 } layout_t;
-
-static int fail(char *err, size_t errlen, const char *fmt, ...) {
-    va_list ap;
-    if (err && errlen) {
-        va_start(ap, fmt);
-        vsnprintf(err, errlen, fmt, ap);
-        va_end(ap);
-    }
-    return -1;
-}
 
 void sph_plot_defaults(sph_plot_spec *s) {
     memset(s, 0, sizeof *s);
@@ -86,9 +77,9 @@ static int usable(double v, int lg) { return isfinite(v) && (!lg || v > 0); }
 
 static int check_range(const char *axis, int lg, double lo, double hi, char *err, size_t errlen) {
     if (!isfinite(lo) || !isfinite(hi) || !(lo < hi))
-        return fail(err, errlen, "%s range [%g, %g] must be finite with min < max", axis, lo, hi);
+        return sph_message_set(err, errlen, "%s range [%g, %g] must be finite with min < max", axis, lo, hi);
     if (lg && lo <= 0)
-        return fail(err, errlen, "%s range [%g, %g] must be positive on a log axis", axis, lo, hi);
+        return sph_message_set(err, errlen, "%s range [%g, %g] must be positive on a log axis", axis, lo, hi);
     return 0;
 }
 
@@ -224,16 +215,16 @@ static int layout(const sph_plot_spec *s, layout_t *L, char *err, size_t errlen)
     int k;
     memset(L, 0, sizeof *L);
     if (s->width < 64 || s->width > 16384 || s->height < 64 || s->height > 16384)
-        return fail(err, errlen, "plot size %dx%d is outside 64..16384 pixels", s->width,
+        return sph_message_set(err, errlen, "plot size %dx%d is outside 64..16384 pixels", s->width,
                     s->height);
     if (s->nseries && !s->series)
-        return fail(err, errlen, "series are missing");
+        return sph_message_set(err, errlen, "series are missing");
     for (i = 0; i < s->nseries; i++) {
         const sph_plot_series *p = &s->series[i];
         if (p->n && (!p->x || !p->y))
-            return fail(err, errlen, "series %zu has no x or y values", i + 1);
+            return sph_message_set(err, errlen, "series %zu has no x or y values", i + 1);
         if (p->style < SPH_PLOT_LINE || p->style > SPH_PLOT_LINE_MARKERS)
-            return fail(err, errlen, "series %zu has unknown style %d", i + 1, p->style);
+            return sph_message_set(err, errlen, "series %zu has unknown style %d", i + 1, p->style);
     }
     f->xlog = s->xlog != 0, f->ylog = s->ylog != 0;
     if (s->xrange_set) {
@@ -276,7 +267,7 @@ static int layout(const sph_plot_spec *s, layout_t *L, char *err, size_t errlen)
     f->area[2] = floor(s->width - right - f->area[0]);
     f->area[3] = floor(s->height - bottom - f->area[1]);
     if (f->area[2] < 16 || f->area[3] < 16)
-        return fail(err, errlen, "plot %dx%d is too small for its labels", s->width, s->height);
+        return sph_message_set(err, errlen, "plot %dx%d is too small for its labels", s->width, s->height);
     return 0;
 }
 
@@ -510,7 +501,7 @@ int sph_plot_draw(const sph_plot_spec *s, cairo_t *cr, char *err, size_t errlen)
     cairo_restore(cr);
     st = cairo_status(cr);
     if (st != CAIRO_STATUS_SUCCESS)
-        return fail(err, errlen, "drawing failed: %s", cairo_status_to_string(st));
+        return sph_message_set(err, errlen, "drawing failed: %s", cairo_status_to_string(st));
     return 0;
 }
 
@@ -519,7 +510,7 @@ int sph_plot_png(const sph_plot_spec *s, const char *file, char *err, size_t err
     cairo_t *cr;
     int rc;
     if (s->width < 64 || s->width > 16384 || s->height < 64 || s->height > 16384)
-        return fail(err, errlen, "plot size %dx%d is outside 64..16384 pixels", s->width,
+        return sph_message_set(err, errlen, "plot size %dx%d is outside 64..16384 pixels", s->width,
                     s->height);
     surf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, s->width, s->height);
     cr = cairo_create(surf);

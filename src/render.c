@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "message.h"
 #include "sph_pictures.h"
 
 #define MIN_SIZE 8
@@ -23,16 +24,6 @@ static const double category_rgb[3][3] = {
     {0.60, 0.60, 0.60}, /* SPH_RENDER_WALL */
 };
 static const double plate_rgb[3] = {0.45, 0.45, 0.45};
-
-static int fail(char *err, size_t errlen, const char *fmt, ...) {
-    va_list ap;
-    if (err && errlen) {
-        va_start(ap, fmt);
-        vsnprintf(err, errlen, fmt, ap);
-        va_end(ap);
-    }
-    return -1;
-}
 
 void sph_render_defaults(sph_render_spec *s) {
     memset(s, 0, sizeof *s);
@@ -119,37 +110,37 @@ int sph_render_layout(const sph_render_spec *s, sph_render_frame *f, char *err, 
     size_t i;
     memset(f, 0, sizeof *f);
     if (s->width < MIN_SIZE || s->width > MAX_SIZE || s->height < MIN_SIZE || s->height > MAX_SIZE)
-        return fail(err, errlen, "image size %dx%d is outside %d..%d pixels", s->width, s->height,
+        return sph_message_set(err, errlen, "image size %dx%d is outside %d..%d pixels", s->width, s->height,
                     MIN_SIZE, MAX_SIZE);
     if (s->n && (!s->x || !s->y))
-        return fail(err, errlen, "particle positions x and y are missing");
+        return sph_message_set(err, errlen, "particle positions x and y are missing");
     if (!(s->radius > 0) || !isfinite(s->radius))
-        return fail(err, errlen, "radius must be a positive number (got %g)", s->radius);
+        return sph_message_set(err, errlen, "radius must be a positive number (got %g)", s->radius);
     if (s->n && !s->category && !s->value)
-        return fail(err, errlen, "need a category or a value per particle");
+        return sph_message_set(err, errlen, "need a category or a value per particle");
     if (scalar_mode(s) && !sph_colormap_find(s->colormap))
-        return fail(err, errlen, "unknown colour map '%s'", s->colormap);
+        return sph_message_set(err, errlen, "unknown colour map '%s'", s->colormap);
     if (scalar_mode(s) && !s->autorange &&
         (!isfinite(s->vmin) || !isfinite(s->vmax) || s->vmin > s->vmax))
-        return fail(err, errlen, "value range [%g, %g] must be finite with vmin <= vmax", s->vmin,
+        return sph_message_set(err, errlen, "value range [%g, %g] must be finite with vmin <= vmax", s->vmin,
                     s->vmax);
     if (s->nplates && !s->plates)
-        return fail(err, errlen, "plate rectangles are missing");
+        return sph_message_set(err, errlen, "plate rectangles are missing");
     for (i = 0; i < 4 * s->nplates; i++)
         if (!isfinite(s->plates[i]))
-            return fail(err, errlen, "plate %zu has a non-finite coordinate", i / 4 + 1);
+            return sph_message_set(err, errlen, "plate %zu has a non-finite coordinate", i / 4 + 1);
     if (s->mirror && !isfinite(s->mirror_x))
-        return fail(err, errlen, "mirror line x = %g is not finite", s->mirror_x);
+        return sph_message_set(err, errlen, "mirror line x = %g is not finite", s->mirror_x);
     if (s->category)
         for (i = 0; i < s->n; i++)
             if (s->category[i] > SPH_RENDER_WALL)
-                return fail(err, errlen, "category of particle %zu is %d, not 0, 1 or 2", i + 1,
+                return sph_message_set(err, errlen, "category of particle %zu is %d, not 0, 1 or 2", i + 1,
                             s->category[i]);
     if (s->view_set) {
         for (i = 0; i < 4; i++)
             v[i] = s->view[i];
         if (!(v[2] > v[0]) || !(v[3] > v[1]) || !isfinite(v[2] - v[0]) || !isfinite(v[3] - v[1]))
-            return fail(err, errlen, "view {%g, %g, %g, %g} needs x0 < x1 and y0 < y1", v[0], v[1],
+            return sph_message_set(err, errlen, "view {%g, %g, %g, %g} needs x0 < x1 and y0 < y1", v[0], v[1],
                         v[2], v[3]);
     } else {
         fit_view(s, v);
@@ -159,7 +150,7 @@ int sph_render_layout(const sph_render_spec *s, sph_render_frame *f, char *err, 
     right = has_colorbar(s) ? ceil(7 * fs) : 0;
     aw = s->width - right - 2 * pad, ah = s->height - top - 2 * pad;
     if (aw < 2 || ah < 2)
-        return fail(err, errlen, "image %dx%d is too small for its label and colour bar", s->width,
+        return sph_message_set(err, errlen, "image %dx%d is too small for its label and colour bar", s->width,
                     s->height);
     f->area[0] = pad, f->area[1] = top + pad, f->area[2] = aw, f->area[3] = ah;
     /* letterbox: the whole requested view fits, centred; the other direction shows more */
@@ -233,7 +224,7 @@ static int draw_particles(const sph_render_spec *s, const sph_render_frame *f, c
     group = malloc(s->n * sizeof *group);
     if (!start || !order || !group) {
         free(start), free(order), free(group);
-        return fail(err, errlen, "out of memory rendering %zu particles", s->n);
+        return sph_message_set(err, errlen, "out of memory rendering %zu particles", s->n);
     }
     for (i = 0; i < s->n; i++) {
         group[i] = group_of(s, f, m, i);
@@ -377,7 +368,7 @@ int sph_render_draw(const sph_render_spec *s, cairo_t *cr, char *err, size_t err
     cairo_restore(cr);
     st = cairo_status(cr);
     if (st != CAIRO_STATUS_SUCCESS)
-        return fail(err, errlen, "drawing failed: %s", cairo_status_to_string(st));
+        return sph_message_set(err, errlen, "drawing failed: %s", cairo_status_to_string(st));
     return 0;
 }
 
@@ -393,10 +384,10 @@ int sph_render_write_png(cairo_surface_t *surface, const char *file, char *err, 
     cairo_status_t st;
     int e;
     if (!file || !*file)
-        return fail(err, errlen, "no output file name");
+        return sph_message_set(err, errlen, "no output file name");
     fp = fopen(file, "wb");
     if (!fp)
-        return fail(err, errlen, "cannot open '%s' for writing: %s", file, strerror(errno));
+        return sph_message_set(err, errlen, "cannot open '%s' for writing: %s", file, strerror(errno));
     st = cairo_surface_write_to_png_stream(surface, write_chunk, fp);
     e = errno;
     if (fclose(fp) != 0 && st == CAIRO_STATUS_SUCCESS) {
@@ -406,8 +397,8 @@ int sph_render_write_png(cairo_surface_t *surface, const char *file, char *err, 
     if (st != CAIRO_STATUS_SUCCESS) {
         remove(file);
         if (st == CAIRO_STATUS_WRITE_ERROR)
-            return fail(err, errlen, "cannot write '%s': %s", file, strerror(e));
-        return fail(err, errlen, "cannot write '%s': %s", file, cairo_status_to_string(st));
+            return sph_message_set(err, errlen, "cannot write '%s': %s", file, strerror(e));
+        return sph_message_set(err, errlen, "cannot write '%s': %s", file, cairo_status_to_string(st));
     }
     return 0;
 }
