@@ -16,7 +16,7 @@ typedef struct sph_plate {
     int axis;            /* -1 fixed, 0 x, 1 y                                        */
     sph_plate_mode mode;
     double vel;          /* velocity along the axis this step (m/s)                  */
-    double vel_set;      /* velocity law value (VELOCITY mode)                        */
+    double vel_new;      /* V^{n+1} of a loaded plate, from the pressure solve        */
     double load;         /* applied load along the axis (LOAD mode), whole sample    */
     double mass;         /* whole-sample mass                                         */
     int mass_set;        /* mass given by the caller                                 */
@@ -63,7 +63,7 @@ struct sph_world {
     double *eta, *gd, *divr;   /* apparent viscosity, shear rate, position div      */
     double *lxx, *lxy, *lyy;   /* kernel-gradient renormalisation (Bonet & Lok 1999) */
     double *gux, *guy, *gvx, *gvy; /* velocity gradient (du/dx, du/dy, dv/dx, dv/dy)  */
-    double *xs, *ys;           /* scratch for reordering / positions at step start */
+    double *xs, *ys;           /* scratch (reordering, shifting displacements)       */
     int *kind, *mat, *id;      /* SPH_FLUID or plate index; material; stable id     */
     int *src;                  /* ghosts: the real particle they image; reals: self */
     signed char *gsx, *gsy;    /* ghosts: sign applied to u, v (mirror: -1)         */

@@ -36,7 +36,7 @@ int sph_plate_fill(sph_world *w, const double rect[4], int axis) {
     pl->rect[3] = rect[3];
     pl->axis = axis;
     pl->mode = SPH_PLATE_FIXED;
-    pl->vel = pl->vel_set = pl->load = pl->force = pl->force_visc = 0.0;
+    pl->vel = pl->vel_new = pl->load = pl->force = pl->force_visc = 0.0;
     pl->mass_set = 0;
     pl->face_side = 0;
     pl->doubled = 0;

@@ -259,7 +259,7 @@ int sph_pressure_solve(sph_world *w, double dt) {
         }
         if (dense_solve(K, a, x))
             return sph_world_fail(w, "singular plate system at step %ld (t = %g)", w->steps, w->t);
-        for (int q = 0; q < K; q++) w->plates[loaded[q]].vel_set = x[q]; /* V^{n+1} */
+        for (int q = 0; q < K; q++) w->plates[loaded[q]].vel_new = x[q]; /* V^{n+1} */
         int nt = n + w->ng;
         for (int i = 0; i < nt; i++) {
             double pi = w->p[i];

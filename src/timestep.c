@@ -26,8 +26,7 @@ double sph_timestep_compute(sph_world *w) {
     amax = sqrt(amax);
     for (int k = 0; k < w->nplates; k++) {
         const sph_plate *pl = &w->plates[k];
-        double v = pl->mode == SPH_PLATE_VELOCITY ? pl->vel_set : pl->vel;
-        if (fabs(v) > umax) umax = fabs(v);
+        if (fabs(pl->vel) > umax) umax = fabs(pl->vel);
         if (pl->mode == SPH_PLATE_LOAD && pl->mass > 0) {
             double a = fabs(pl->load + pl->force) / pl->mass;
             if (a > amax) amax = a;

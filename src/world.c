@@ -81,19 +81,28 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
     return w;
 }
 
+/* Every per-particle array (slots for real particles and ghosts): grown together by
+ * sph_world_reserve, freed together. */
+#define PARTICLE_DOUBLES(w)                                                                 \
+    {&w->x,   &w->y,   &w->u,   &w->v,   &w->us,  &w->vs,  &w->ax,       &w->ay,       \
+     &w->p,   &w->rho, &w->m,   &w->eta, &w->gd,  &w->divr, &w->xs, &w->ys, &w->lxx,       \
+     &w->lxy, &w->lyy, &w->gux, &w->guy, &w->gvx, &w->gvy, &w->psens[0], &w->psens[1], \
+     &w->psens[2], &w->psens[3]}
+#define PARTICLE_INTS(w)                                                                    \
+    {&w->kind, &w->mat, &w->id, &w->src, &w->row, &w->perm, &w->iscratch, &w->cell_of,     \
+     &w->nb_count}
+
 void sph_world_free(sph_world *w) {
     if (!w) return;
-    double **d[] = {&w->x, &w->y, &w->u, &w->v, &w->us, &w->vs, &w->ax, &w->ay, &w->p,
-                    &w->rho, &w->m, &w->eta, &w->gd, &w->divr, &w->xs, &w->ys, &w->lxx, &w->lxy, &w->lyy,
-                    &w->gux, &w->guy, &w->gvx, &w->gvy,
-                    &w->psens[0], &w->psens[1], &w->psens[2], &w->psens[3], &w->nb_gx,
-                    &w->nb_gy, &w->nb_f, &w->b, &w->sol, &w->bk[0], &w->bk[1], &w->bk[2],
-                    &w->bk[3], &w->solk[0], &w->solk[1], &w->solk[2], &w->solk[3]};
+    double **d[] = PARTICLE_DOUBLES(w);
     for (size_t k = 0; k < sizeof d / sizeof *d; k++) free(*d[k]);
-    int **ip[] = {&w->kind, &w->mat, &w->id, &w->src, &w->row, &w->perm, &w->iscratch,
-                  &w->cell_start, &w->cell_items, &w->cell_of, &w->nb_start, &w->nb_j,
-                  &w->nb_count, &w->row_of};
+    int **ip[] = PARTICLE_INTS(w);
     for (size_t k = 0; k < sizeof ip / sizeof *ip; k++) free(*ip[k]);
+    double **o[] = {&w->nb_gx, &w->nb_gy, &w->nb_f, &w->b, &w->sol, &w->bk[0], &w->bk[1], &w->bk[2],
+                    &w->bk[3], &w->solk[0], &w->solk[1], &w->solk[2], &w->solk[3]};
+    for (size_t k = 0; k < sizeof o / sizeof *o; k++) free(*o[k]);
+    int **oi[] = {&w->cell_start, &w->cell_items, &w->nb_start, &w->nb_j, &w->row_of};
+    for (size_t k = 0; k < sizeof oi / sizeof *oi; k++) free(*oi[k]);
     free(w->gsx);
     free(w->gsy);
     free(w->surf);
@@ -108,18 +117,14 @@ void sph_world_free(sph_world *w) {
 int sph_world_reserve(sph_world *w, int need) {
     if (need <= w->cap) return 0;
     int cap = need + need / 2 + 256;
-    double **d[] = {&w->x, &w->y, &w->u, &w->v, &w->us, &w->vs, &w->ax, &w->ay, &w->p,
-                    &w->rho, &w->m, &w->eta, &w->gd, &w->divr, &w->xs, &w->ys, &w->lxx, &w->lxy, &w->lyy,
-                    &w->gux, &w->guy, &w->gvx, &w->gvy,
-                    &w->psens[0], &w->psens[1], &w->psens[2], &w->psens[3]};
+    double **d[] = PARTICLE_DOUBLES(w);
     for (size_t k = 0; k < sizeof d / sizeof *d; k++) {
         double *q = realloc(*d[k], sizeof(double) * (size_t)cap);
         if (!q) return sph_world_fail(w, "out of memory (%d particles)", need);
         memset(q + w->cap, 0, sizeof(double) * (size_t)(cap - w->cap));
         *d[k] = q;
     }
-    int **ip[] = {&w->kind, &w->mat, &w->id, &w->src, &w->row, &w->perm, &w->iscratch,
-                  &w->cell_of, &w->nb_count};
+    int **ip[] = PARTICLE_INTS(w);
     for (size_t k = 0; k < sizeof ip / sizeof *ip; k++) {
         int *q = realloc(*ip[k], sizeof(int) * (size_t)cap);
         if (!q) return sph_world_fail(w, "out of memory (%d particles)", need);
@@ -278,8 +283,7 @@ int sph_world_step(sph_world *w, double dt) {
     double vold[SPH_MAX_PLATES];
     for (int k = 0; k < w->nplates; k++) {
         sph_plate *pl = &w->plates[k];
-        if (pl->mode == SPH_PLATE_VELOCITY) pl->vel = pl->vel_set;
-        else if (pl->mode == SPH_PLATE_FIXED) pl->vel = 0.0;
+        if (pl->mode == SPH_PLATE_FIXED) pl->vel = 0.0;
         vold[k] = pl->vel;
     }
 
@@ -290,7 +294,7 @@ int sph_world_step(sph_world *w, double dt) {
     sph_viscous_explicit(w, dt);
     if (sph_pressure_solve(w, dt)) return -1;
     for (int k = 0; k < w->nplates; k++)
-        if (w->plates[k].mode == SPH_PLATE_LOAD) w->plates[k].vel = w->plates[k].vel_set;
+        if (w->plates[k].mode == SPH_PLATE_LOAD) w->plates[k].vel = w->plates[k].vel_new;
     sph_pressure_correct(w, dt);
     if (w->par.shifting > 0) sph_shifting_apply(w, dt);
     for (int k = 0; k < w->nplates; k++) sph_plate_move(w, k, 0.5 * dt * (vold[k] + w->plates[k].vel));
@@ -327,7 +331,9 @@ void sph_world_stats(const sph_world *w, sph_stats *s) {
     s->max_eta = etamax;
     s->yielded = yielded;
     long pairs = w->nb_start ? w->nb_start[w->n] : 0;
-    s->neighbours_mean = w->n ? (double)pairs / (w->st.unknowns + w->st.surface + 1e-300) : 0;
+    int rows = 0;
+    for (int i = 0; i < w->n; i++) rows += w->active[i];
+    s->neighbours_mean = rows ? (double)pairs / rows : 0.0;
     s->wall_time = w->wall_time;
 }
 
@@ -378,7 +384,7 @@ int sph_plate_set_velocity(sph_world *w, int k, double v) {
     if (w->plates[k].axis < 0) return sph_world_fail(w, "plate %d is fixed (no axis): it cannot move", k + 1);
     if (!isfinite(v)) return sph_world_fail(w, "plate %d: velocity %g is not finite", k + 1, v);
     w->plates[k].mode = SPH_PLATE_VELOCITY;
-    w->plates[k].vel_set = v;
+    w->plates[k].vel = v;
     return 0;
 }
 
@@ -387,7 +393,6 @@ int sph_plate_set_load(sph_world *w, int k, double f) {
     if (w->plates[k].axis < 0) return sph_world_fail(w, "plate %d is fixed (no axis): it cannot move", k + 1);
     if (!isfinite(f)) return sph_world_fail(w, "plate %d: load %g is not finite", k + 1, f);
     sph_plate *pl = &w->plates[k];
-    if (pl->mode != SPH_PLATE_LOAD) pl->vel_set = pl->vel;
     pl->mode = SPH_PLATE_LOAD;
     pl->load = f;
     return 0;
@@ -403,10 +408,7 @@ int sph_plate_set_mass(sph_world *w, int k, double m) {
 
 sph_plate_mode sph_plate_mode_of(const sph_world *w, int k) { return w->plates[k].mode; }
 int sph_plate_axis(const sph_world *w, int k) { return w->plates[k].axis; }
-double sph_plate_velocity(const sph_world *w, int k) {
-    const sph_plate *pl = &w->plates[k];
-    return pl->mode == SPH_PLATE_VELOCITY && w->steps == 0 ? pl->vel_set : pl->vel;
-}
+double sph_plate_velocity(const sph_world *w, int k) { return w->plates[k].vel; }
 double sph_plate_force(const sph_world *w, int k) { return w->plates[k].force; }
 double sph_plate_mass(const sph_world *w, int k) { return w->plates[k].mass; }
 void sph_plate_rect(const sph_world *w, int k, double rect[4]) {

@@ -4,7 +4,6 @@
 # exits non-zero without a "not ok" line counts as one failure. Ends with the summary line.
 B=${1:-build}
 top=$(cd "$(dirname "$0")/.." && pwd)
-log=$(mktemp)
 pass=0; fail=0
 run() {
     name=$1; shift
@@ -29,6 +28,5 @@ for t in "$top"/tests/lua/*.lua; do
     [ -f "$t" ] || continue
     run "$(basename "$t")" "$top/$B/sph" "$t"
 done
-rm -f "$log"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
