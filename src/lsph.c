@@ -370,9 +370,14 @@ static int w_run(lua_State *L) {
         double now = sph_world_time(w);
         apply_laws(L, 1, w, now);
         double dt = fixed_dt > 0 ? fixed_dt : sph_world_next_dt(w);
-        double target = fmin(until_t, next_out);
-        if (now + dt > target - eps) dt = target - now;
-        else if (now + 1.5 * dt > target) dt = 0.5 * (target - now); /* no sliver steps */
+        /* Land on the next output time by spreading the remaining interval evenly over the
+         * steps it needs, rather than cutting the last step short: the pressure carries the
+         * correction of the density error made over the previous steps, which scales as
+         * 1 / dt^2, so a step much shorter than the one before shows as a spike in the
+         * plate force (measured: 19 -> -9 for a step 0.54 times the one before). */
+        double r = fmin(until_t, next_out) - now;
+        if (dt >= r - eps) dt = r;
+        else if (r < 1e6 * dt) dt = r / ceil(r / dt);
         if (sph_world_step(w, dt) < 0) {
             if (show) fprintf(stderr, "\n");
             return engine_error(L, w);
