@@ -60,6 +60,7 @@ struct sph_world {
     double *us, *vs;           /* predicted velocity u*                             */
     double *ax, *ay;           /* acceleration of the last step (dt force limit)    */
     double *p, *rho, *m;       /* pressure, density, mass                           */
+    double *phi;               /* density-correction potential (dt^2 p units)       */
     double *eta, *gd, *divr;   /* apparent viscosity, shear rate, position div      */
     double *lxx, *lxy, *lyy;   /* kernel-gradient renormalisation (Bonet & Lok 1999) */
     double *gux, *guy, *gvx, *gvy; /* velocity gradient (du/dx, du/dy, dv/dx, dv/dy)  */
@@ -93,6 +94,12 @@ struct sph_world {
     int nmats;
     sph_plate plates[SPH_MAX_PLATES];
     int nplates;
+
+    /* implicit viscous system (one per velocity component, same structure) */
+    sph_csr V;
+    double *vb, *vsol;         /* right-hand side and solution, per fluid unknown   */
+    int *vrow_of;              /* unknown -> particle                               */
+    int vrows_cap;
 
     /* pressure system */
     sph_csr A;
@@ -143,9 +150,10 @@ int sph_plate_check_escape(sph_world *w);
 /* physics passes (viscous.c, pressure.c) */
 void sph_viscous_rheology(sph_world *w);
 void sph_viscous_explicit(sph_world *w, double dt);
-void sph_viscous_plate_forces(sph_world *w);
+int sph_viscous_implicit(sph_world *w, double dt);
 int sph_pressure_solve(sph_world *w, double dt);
 void sph_pressure_correct(sph_world *w, double dt);
+int sph_density_correct(sph_world *w);
 /* shifting.c */
 void sph_shifting_apply(sph_world *w, double dt);
 

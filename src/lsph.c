@@ -143,7 +143,8 @@ static void axis_range(lua_State *L, int idx, const char *fname, const char *wha
 static int l_world(lua_State *L) {
     static const char *const keys[] = {"dx", "h", "rho", "gravity", "viscosity", "shifting",
                                        "cfl", "cvisc", "cforce", "dt_max", "periodic", "symmetry",
-                                       "threads", "tol", "max_iter", "surface", "density_relax", 0};
+                                       "threads", "tol", "max_iter", "surface", "density_relax",
+                                       "density_tol", 0};
     luaL_checktype(L, 1, LUA_TTABLE);
     sph_lua_opt_only(L, 1, "world", keys);
     sph_params p;
@@ -162,6 +163,7 @@ static int l_world(lua_State *L) {
     p.max_iter = (int)sph_lua_opt_number(L, 1, "world", "max_iter", p.max_iter);
     p.surface_div = sph_lua_opt_number(L, 1, "world", "surface", p.surface_div);
     p.density_relax = sph_lua_opt_number(L, 1, "world", "density_relax", p.density_relax);
+    p.density_tol = sph_lua_opt_number(L, 1, "world", "density_tol", p.density_tol);
     if (!(p.shifting >= 0)) luaL_error(L, "bad argument to 'world' (shifting: number >= 0 expected)");
     if (!(p.dx > 0)) luaL_error(L, "bad argument to 'world' (dx: positive number expected, got %f)", p.dx);
     if (p.threads < 0) luaL_error(L, "bad argument to 'world' (threads: number >= 1 expected)");
@@ -209,10 +211,6 @@ static int l_world(lua_State *L) {
         luaL_error(L, "bad argument to 'world' (symmetry: table {x = x0} expected)");
     }
     lua_pop(L, 1);
-    if (p.viscosity == SPH_VISC_IMPLICIT)
-        luaL_error(L, "bad argument to 'world' (viscosity: \"implicit\" is not available in this "
-                      "version; use \"explicit\")");
-
     lworld *lw = lua_newuserdatauv(L, sizeof *lw, 1);
     lw->w = 0;
     luaL_setmetatable(L, WORLD);

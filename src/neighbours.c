@@ -70,7 +70,7 @@ static void permute(sph_world *w, const int *perm) {
     int n = w->n;
     double *dscratch = w->xs;
     double **darr[] = {&w->x, &w->y, &w->u, &w->v, &w->ax, &w->ay, &w->p, &w->rho, &w->m,
-                       &w->eta, &w->gd, &w->psens[0], &w->psens[1], &w->psens[2], &w->psens[3]};
+                       &w->eta, &w->gd, &w->phi, &w->psens[0], &w->psens[1], &w->psens[2], &w->psens[3]};
     for (size_t a = 0; a < sizeof darr / sizeof *darr; a++) {
         double *arr = *darr[a];
         for (int i = 0; i < n; i++) dscratch[i] = arr[perm[i]];

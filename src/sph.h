@@ -55,7 +55,10 @@ typedef struct sph_params {
     double tol;            /* pressure solver: relative residual                   */
     int max_iter;          /* pressure solver: iteration limit                     */
     double surface_div;    /* free surface where div r < surface_div (2D: 2 full)  */
-    double density_relax;  /* weight of the density-invariant term in the PPE source */
+    double density_relax;  /* fraction of the density error removed each step by the
+                              density correction (pressure.c); 1 by default           */
+    double density_tol;    /* dt shrinks while the max density error exceeds this
+                              (0: no control); default 0.005                        */
 } sph_params;
 
 void sph_params_default(sph_params *p);

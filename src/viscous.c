@@ -8,6 +8,7 @@
 #include "internal.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 void sph_viscous_rheology(sph_world *w) {
     int n = w->n;
@@ -94,4 +95,134 @@ void sph_viscous_explicit(sph_world *w, double dt) {
     for (int k = 0; k < np; k++)
         w->plates[k].force_visc = fplate[k] * (w->plates[k].doubled ? 2.0 : 1.0);
     sph_boundary_sync(w, w->us, w->vs, 1);
+}
+
+/* Implicit viscous step: for each velocity component,
+ *   u*_i - dt sum_j c_ij (u*_i - u*_j) = u_i + dt g,  c_ij = m_j (eta_i + eta_j) F_ij / (rho_i rho_j),
+ * with eta lagged from u^n and the same Morris operator as the explicit step: a wall
+ * neighbour enters as beta (u*_i - u_wall) (its plate's velocity this step, known), a ghost
+ * as its source's unknown times the image sign (a mirror reverses the normal component, so
+ * the u and v systems differ in those entries), a particle's own mirror image as a diagonal
+ * term. F_ij < 0, so the matrix is an M-matrix; scaling row i by m_i makes it symmetric
+ * (m_i c_ij is symmetric in i, j), and Jacobi-preconditioned CG warm-started from u^n
+ * solves it. The time step no longer depends on the viscosity. */
+static int reserve_visc(sph_world *w, int nrows) {
+    if (nrows <= w->vrows_cap && w->vb) return 0;
+    int cap = nrows + nrows / 4 + 64;
+    double *b = realloc(w->vb, sizeof(double) * (size_t)cap);
+    if (b) w->vb = b;
+    double *x = realloc(w->vsol, sizeof(double) * (size_t)cap);
+    if (x) w->vsol = x;
+    int *r = realloc(w->vrow_of, sizeof(int) * (size_t)cap);
+    if (r) w->vrow_of = r;
+    if (!b || !x || !r) return sph_world_fail(w, "out of memory (%d viscous unknowns)", nrows);
+    w->vrows_cap = cap;
+    return 0;
+}
+
+/* Values and right-hand side of component comp (0: u, 1: v); the structure is in w->V. */
+static void visc_assemble(sph_world *w, double dt, int comp) {
+    sph_csr *A = &w->V;
+    int nrows = A->n;
+    double g = w->par.gravity[comp];
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+    for (int r = 0; r < nrows; r++) {
+        int i = w->vrow_of[r], e = A->start[r] + 1;
+        double mi = w->m[i], etai = w->eta[i], rhoi = w->rho[i];
+        double diag = 1.0, rhs = (comp ? w->v[i] : w->u[i]) + dt * g;
+        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
+            int j = w->nb_j[k];
+            if (w->kind[j] == SPH_FLUID) {
+                int s = w->src[j];
+                double c = dt * w->m[j] * (etai + w->eta[j]) * w->nb_f[k] / (rhoi * w->rho[j]);
+                double sg = comp ? w->gsy[j] : w->gsx[j];
+                diag -= c;
+                if (s == i) {
+                    diag += c * sg; /* own image: c (u_i - sg u_i) */
+                } else {
+                    A->col[e] = w->row[s];
+                    A->val[e] = mi * c * sg;
+                    e++;
+                }
+            } else {
+                double wx, wy, beta = sph_plate_noslip(w, i, j);
+                sph_plate_wall_velocity(w, j, &wx, &wy);
+                double c = dt * w->m[j] * 2.0 * etai * w->nb_f[k] / (rhoi * w->rho[j]) * beta;
+                diag -= c;
+                rhs -= c * (comp ? wy : wx);
+            }
+        }
+        A->col[A->start[r]] = r;
+        A->val[A->start[r]] = mi * diag;
+        A->diag[r] = mi * diag;
+        w->vb[r] = mi * rhs;
+        w->vsol[r] = comp ? w->v[i] : w->u[i];
+    }
+}
+
+int sph_viscous_implicit(sph_world *w, double dt) {
+    int n = w->n, np = w->nplates, nrows = 0;
+    for (int i = 0; i < n; i++) w->row[i] = w->kind[i] == SPH_FLUID ? nrows++ : -1;
+    if (reserve_visc(w, nrows)) return -1;
+    for (int i = 0; i < n; i++)
+        if (w->row[i] >= 0) w->vrow_of[w->row[i]] = i;
+
+    sph_csr *A = &w->V;
+    if (sph_csr_reserve(A, nrows, 1)) return sph_world_fail(w, "out of memory");
+    A->start[0] = 0;
+    for (int r = 0; r < nrows; r++) {
+        int i = w->vrow_of[r], c = 1;
+        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
+            int j = w->nb_j[k];
+            c += w->kind[j] == SPH_FLUID && w->src[j] != i;
+        }
+        A->start[r + 1] = A->start[r] + c;
+    }
+    if (sph_csr_reserve(A, nrows, A->start[nrows]) || sph_solver_reserve(&w->solver, nrows))
+        return sph_world_fail(w, "out of memory (viscous matrix)");
+
+    int iters = 0;
+    double resid = 0.0;
+    for (int comp = 0; comp < 2; comp++) {
+        visc_assemble(w, dt, comp);
+        sph_solve_result res =
+            sph_solver_pcg(&w->solver, A, w->vb, w->vsol, w->par.tol, w->par.max_iter, w->threads);
+        if (!res.converged)
+            return sph_world_fail(w,
+                                  "viscous solver (%s) did not converge at step %ld (t = %g, dt = %g): "
+                                  "relative residual %.3g after %d iterations (tolerance %g, %d unknowns)",
+                                  comp ? "v" : "u", w->steps, w->t, dt, res.residual, res.iterations,
+                                  w->par.tol, nrows);
+        iters += res.iterations;
+        if (res.residual > resid) resid = res.residual;
+        double *dst = comp ? w->vs : w->us;
+        for (int r = 0; r < nrows; r++) dst[w->vrow_of[r]] = w->vsol[r];
+    }
+    w->st.visc_iterations = iters;
+    w->st.visc_residual = resid;
+
+    /* walls keep their plate's velocity; the viscous force on each plate from u* */
+    double fplate[SPH_MAX_PLATES] = {0};
+#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : fplate[:SPH_MAX_PLATES])
+    for (int i = 0; i < n; i++) {
+        if (w->kind[i] != SPH_FLUID) {
+            sph_plate_wall_velocity(w, i, &w->us[i], &w->vs[i]);
+            continue;
+        }
+        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
+            int j = w->nb_j[k];
+            if (w->kind[j] == SPH_FLUID) continue;
+            const sph_plate *pl = &w->plates[w->kind[j]];
+            if (pl->axis < 0) continue;
+            double wx, wy, beta = sph_plate_noslip(w, i, j);
+            sph_plate_wall_velocity(w, j, &wx, &wy);
+            double c = w->m[j] * 2.0 * w->eta[i] * w->nb_f[k] / (w->rho[i] * w->rho[j]);
+            double d = pl->axis == 0 ? beta * (w->us[i] - wx) * w->gsx[j] : beta * (w->vs[i] - wy) * w->gsy[j];
+            fplate[w->kind[j]] -= w->m[i] * c * d;
+        }
+    }
+    for (int k = 0; k < np; k++)
+        w->plates[k].force_visc = fplate[k] * (w->plates[k].doubled ? 2.0 : 1.0);
+    sph_boundary_sync(w, w->us, w->vs, 1);
+    return 0;
 }

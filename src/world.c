@@ -15,14 +15,15 @@ void sph_params_default(sph_params *p) {
     p->dx = 0.0;
     p->h = 0.0;
     p->rho0 = 1.0;
-    p->viscosity = SPH_VISC_EXPLICIT;
+    p->viscosity = SPH_VISC_IMPLICIT;
     p->cfl = 0.25;
     p->cvisc = 0.125;
     p->cforce = 0.25;
     p->tol = 1e-6;
     p->max_iter = 5000;
     p->surface_div = 1.5;
-    p->density_relax = 0.3; /* measured: 1 (the paper's) makes the plate force ring, 0.1 lets the density drift past 1 % */
+    p->density_tol = 0.005;
+    p->density_relax = 1.0;
 }
 
 int sph_world_fail(sph_world *w, const char *fmt, ...) {
@@ -42,7 +43,7 @@ static const char *check_params(const sph_params *p) {
         "cfl must be in (0, 1]", "periodic range must have lo < hi",
         "an axis cannot be both periodic and a symmetry plane", "tol must be in (0, 1)",
         "max_iter must be positive", "gravity must be finite", "density_relax must be in [0, 1]",
-        "shifting must be >= 0"};
+        "shifting must be >= 0", "density_tol must be in [0, 1)"};
     if (!(p->dx > 0 && isfinite(p->dx))) return bad[0];
     if (!(p->h >= 0 && isfinite(p->h))) return bad[1];
     if (!(p->rho0 > 0 && isfinite(p->rho0))) return bad[2];
@@ -56,6 +57,7 @@ static const char *check_params(const sph_params *p) {
     if (!isfinite(p->gravity[0]) || !isfinite(p->gravity[1])) return bad[8];
     if (!(p->density_relax >= 0 && p->density_relax <= 1)) return bad[9];
     if (!(p->shifting >= 0)) return bad[10];
+    if (!(p->density_tol >= 0 && p->density_tol < 1)) return bad[11];
     return 0;
 }
 
@@ -86,7 +88,7 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
 #define PARTICLE_DOUBLES(w)                                                                 \
     {&w->x,   &w->y,   &w->u,   &w->v,   &w->us,  &w->vs,  &w->ax,       &w->ay,       \
      &w->p,   &w->rho, &w->m,   &w->eta, &w->gd,  &w->divr, &w->xs, &w->ys, &w->lxx,       \
-     &w->lxy, &w->lyy, &w->gux, &w->guy, &w->gvx, &w->gvy, &w->psens[0], &w->psens[1], \
+     &w->lxy, &w->lyy, &w->gux, &w->guy, &w->gvx, &w->gvy, &w->phi, &w->psens[0], &w->psens[1], \
      &w->psens[2], &w->psens[3]}
 #define PARTICLE_INTS(w)                                                                    \
     {&w->kind, &w->mat, &w->id, &w->src, &w->row, &w->perm, &w->iscratch, &w->cell_of,     \
@@ -99,9 +101,9 @@ void sph_world_free(sph_world *w) {
     int **ip[] = PARTICLE_INTS(w);
     for (size_t k = 0; k < sizeof ip / sizeof *ip; k++) free(*ip[k]);
     double **o[] = {&w->nb_gx, &w->nb_gy, &w->nb_f, &w->b, &w->sol, &w->bk[0], &w->bk[1], &w->bk[2],
-                    &w->bk[3], &w->solk[0], &w->solk[1], &w->solk[2], &w->solk[3]};
+                    &w->bk[3], &w->solk[0], &w->solk[1], &w->solk[2], &w->solk[3], &w->vb, &w->vsol};
     for (size_t k = 0; k < sizeof o / sizeof *o; k++) free(*o[k]);
-    int **oi[] = {&w->cell_start, &w->cell_items, &w->nb_start, &w->nb_j, &w->row_of};
+    int **oi[] = {&w->cell_start, &w->cell_items, &w->nb_start, &w->nb_j, &w->row_of, &w->vrow_of};
     for (size_t k = 0; k < sizeof oi / sizeof *oi; k++) free(*oi[k]);
     free(w->gsx);
     free(w->gsy);
@@ -109,6 +111,7 @@ void sph_world_free(sph_world *w) {
     free(w->active);
     free(w->cellflag);
     sph_csr_free(&w->A);
+    sph_csr_free(&w->V);
     sph_solver_free(&w->solver);
     free(w);
 }
@@ -291,11 +294,16 @@ int sph_world_step(sph_world *w, double dt) {
     if (sph_neighbours_sort(w) || sph_boundary_ghosts(w) || sph_neighbours_build(w)) return -1;
     mark_surface(w);
     sph_viscous_rheology(w);
-    sph_viscous_explicit(w, dt);
+    if (w->par.viscosity == SPH_VISC_IMPLICIT) {
+        if (sph_viscous_implicit(w, dt)) return -1;
+    } else {
+        sph_viscous_explicit(w, dt);
+    }
     if (sph_pressure_solve(w, dt)) return -1;
     for (int k = 0; k < w->nplates; k++)
         if (w->plates[k].mode == SPH_PLATE_LOAD) w->plates[k].vel = w->plates[k].vel_new;
     sph_pressure_correct(w, dt);
+    if (sph_density_correct(w)) return -1;
     if (w->par.shifting > 0) sph_shifting_apply(w, dt);
     for (int k = 0; k < w->nplates; k++) sph_plate_move(w, k, 0.5 * dt * (vold[k] + w->plates[k].vel));
 

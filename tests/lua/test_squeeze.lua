@@ -1,18 +1,65 @@
--- Squeeze-flow regressions (paper's scaling, half sample with a symmetry plane).
--- Bingham (explicit viscosity) Bn = 0.5, M = 100, Re = 10, constant velocity: reaches
---    h = 0.6 with no NaN and a max density error under 1 %.
+-- Squeeze-flow regressions (paper's scaling, half sample with a symmetry plane, dx = 1/40).
+-- 1. Bingham Bn = 0.5, M = 100, Re = 10 at constant velocity, explicit and implicit
+--    viscosity: each reaches h = 0.6 with no NaN and a max density error under 1 %, and
+--    their plate forces agree (means over windows of 0.1 in t: the force has a few %
+--    of step-to-step noise, and single-step spikes up to 2x with explicit viscosity).
+-- 2. Newtonian, Re = 1, V = 1 (implicit viscosity) against lubrication theory F = mu V / h^6.
 local squeeze = require "sph.squeeze"
 local T = require "sph.test"
 local o = ... or {}
 
-T.case("Bingham squeeze reaches h = 0.6", function()
-  local w, top = squeeze.build{ dx = 1 / 40, Re = 10, Bn = 0.5, M = 100, mode = "velocity", world = { threads = o.threads } }
-  local emax = 0
-  w:run{ until_t = 0.41, every = 0.01, each = function(ww) emax = math.max(emax, ww:stats().max_density_error) end }
-  print(string.format("# Bingham: h = %.3f after %d steps, max density error %.4f", top.position, w.steps, emax))
-  T.below(top.position, 0.6 + 1e-9, "Bingham squeeze reaches h = 0.6")
-  -- measured 0.0063 (density_relax 0.3, shifting 20)
-  T.below(emax, 0.01, "Bingham squeeze max density error under 1 %")
+local function bingham(viscosity)
+  local w, top = squeeze.build{ dx = 1 / 40, Re = 10, Bn = 0.5, M = 100, mode = "velocity",
+                                world = { threads = o.threads, viscosity = viscosity } }
+  local emax, win = 0, {}
+  w:run{ until_t = 0.41, every = 0.005, each = function(ww)
+    emax = math.max(emax, ww:stats().max_density_error)
+    local k = math.floor(ww.t / 0.1 - 1e-9) + 1 -- window (0, 0.1], (0.1, 0.2], ...
+    win[k] = win[k] or { s = 0, n = 0 }
+    win[k].s, win[k].n = win[k].s + top.force, win[k].n + 1
+  end }
+  local s = w:stats()
+  print(string.format("# Bingham %s: h = %.3f after %d steps (%.1f s), max density error %.4f, mean pressure iterations %.1f",
+    viscosity, top.position, w.steps, s.wall_time, emax, s.solver_iterations_total / w.steps))
+  T.below(top.position, 0.6 + 1e-9, "Bingham squeeze (" .. viscosity .. ") reaches h = 0.6")
+  T.below(emax, 0.01, "Bingham squeeze (" .. viscosity .. ") max density error under 1 %")
+  local means = {}
+  for k = 1, 4 do means[k] = win[k].s / win[k].n end
+  return means
+end
+
+T.case("Bingham squeeze, explicit against implicit viscosity", function()
+  local e = bingham("explicit")
+  local i = bingham("implicit")
+  for k = 2, 4 do
+    local d = math.abs(i[k] - e[k]) / e[k]
+    print(string.format("# mean force over t in (%.1f, %.1f]: explicit %.3f implicit %.3f (%.1f %%)", (k - 1) / 10, k / 10, e[k], i[k], 100 * d))
+    -- measured differences 3.0, 2.1, 8.3 % (the last window holds the explicit run's
+    -- largest spikes: 64 against a trend of 30 at t = 0.335). Tolerance 12 %.
+    T.below(d, 0.12, string.format("explicit and implicit mean plate force agree within 12 %% over t in (%.1f, %.1f]", (k - 1) / 10, k / 10))
+  end
+end)
+
+T.case("Newtonian squeeze against lubrication theory", function()
+  local w, top = squeeze.build{ dx = 1 / 40, Re = 1, Bn = 0, mode = "velocity", world = { threads = o.threads } }
+  local lx, ly = {}, {}
+  w:run{ until_t = 0.66, every = 0.005, each = function()
+    local h = top.position
+    if h <= 0.5 then lx[#lx + 1], ly[#ly + 1] = math.log(h), math.log(top.force) end
+  end }
+  local n, sx, sy, sxx, sxy = #lx, 0, 0, 0, 0
+  for k = 1, n do sx, sy, sxx, sxy = sx + lx[k], sy + ly[k], sxx + lx[k] ^ 2, sxy + lx[k] * ly[k] end
+  local slope = (n * sxy - sx * sy) / (n * sxx - sx * sx)
+  local ratio = math.exp((sy - slope * sx) / n + slope * math.log(0.35)) / squeeze.newtonian_force(0.35)
+  print(string.format("# Newtonian: %d samples in h in [%.3f, 0.5], log-log slope %.3f, fitted F(0.35) / lubrication %.4f, %d steps",
+    n, top.position, slope, ratio, w.steps))
+  -- measured: slope -6.02, F(0.35) / (mu V / h^6) = 0.866 (implicit, dx = 1/40); explicit
+  -- viscosity gives 0.856 at dx = 1/40 and 0.869 at dx = 1/80: the 13 % below lubrication
+  -- does not shrink with dx, it is the sample's finite aspect ratio (a / h = 4 at h = 0.35),
+  -- which the a >> h theory leaves out. Tolerances: slope -6 +- 0.3, ratio 0.87 +- 0.06.
+  T.close(slope, -6, 0.3, "Newtonian squeeze: log-log slope of F against h within 0.3 of -6")
+  T.close(ratio, 0.87, 0.06, "Newtonian squeeze: F(0.35) within 0.06 of 0.87 x lubrication")
+  T.below(top.position, 0.35, "Newtonian squeeze reaches h = 0.35")
 end)
 
 T.done()
