@@ -52,8 +52,12 @@ check:
 	$(MAKE) SANITIZE=1 OPT=-O1 all
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 sh tests/run.sh build-san
 
-bench: all
+bench: all $(B)/bench_render
 	@sh scripts/bench.sh $(B)
+
+# the renderer benchmark (not a test, not built by `all`)
+$(B)/bench_render: tests/bench/bench_render.c $(B)/libsph.a | $(B)
+	$(CC) $(CFLAGS) -Isrc -o $@ $< $(B)/libsph.a $(LDFLAGS) $(LDLIBS)
 
 stability: all
 	$(B)/sph scripts/stability.lua

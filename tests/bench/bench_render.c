@@ -1,9 +1,7 @@
 /* Renderer benchmark (not a test): 100 000 particles to 800x400 and 1600x800 PNGs,
    median of 5 runs, split into drawing (paths + fills) and PNG encoding + writing.
 
-   cc -std=c11 -D_POSIX_C_SOURCE=200809L -O2 -Isrc $(pkg-config --cflags cairo) \
-      tests/bench/bench_render.c src/render.c src/colormap.c src/plot.c \
-      $(pkg-config --libs cairo) -lm -o build/bench_render && build/bench_render [DIR]  */
+   make build/bench_render && build/bench_render [DIR]     (also run by `make bench`)  */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
