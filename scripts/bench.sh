@@ -21,8 +21,11 @@ case $B in
     build-san) mk="SANITIZE=1 OPT=-O1" ;;
     *) mk="" ;;
 esac
-# shellcheck disable=SC2086 # $mk is a list of make variables
-make -s $mk all "$B/bench_render"
+# build first, unless `make bench` has (a nested make would lose the parent's jobserver)
+if [ -z "${MAKELEVEL:-}" ]; then
+    # shellcheck disable=SC2086 # $mk is a list of make variables
+    make -s $mk all "$B/bench_render"
+fi
 
 out=out/bench
 mkdir -p "$out"
