@@ -279,6 +279,32 @@ int sph_pressure_solve(sph_world *w, double dt) {
     return 0;
 }
 
+/* Continuity over interior fluid, rho_i += scale sum_j m_j (a_i - a_j) . L grad W_ij for the
+ * vector field (ax, ay) (ghosts synced); free-surface particles are reset to rho0 when
+ * reset_surface is set. Returns the max |rho / rho0 - 1| over interior fluid. */
+static double advance_density(sph_world *w, const double *ax, const double *ay, double scale, int reset_surface) {
+    int n = w->n;
+    double rho0 = w->par.rho0, maxerr = 0.0;
+#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(max : maxerr)
+    for (int i = 0; i < n; i++) {
+        if (w->kind[i] != SPH_FLUID) continue;
+        if (w->surf[i]) {
+            if (reset_surface) w->rho[i] = rho0;
+            continue;
+        }
+        double div = 0.0, lxx = w->lxx[i], lxy = w->lxy[i], lyy = w->lyy[i];
+        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
+            int j = w->nb_j[k];
+            double gx = lxx * w->nb_gx[k] + lxy * w->nb_gy[k], gy = lxy * w->nb_gx[k] + lyy * w->nb_gy[k];
+            div += w->m[j] * ((ax[i] - ax[j]) * gx + (ay[i] - ay[j]) * gy);
+        }
+        w->rho[i] += scale * div;
+        double e = fabs(w->rho[i] / rho0 - 1.0);
+        if (e > maxerr) maxerr = e;
+    }
+    return maxerr;
+}
+
 /* u^{n+1} = u* - dt (grad p / rho); continuity with u^{n+1}; x^{n+1} = x^n + dt (u^n + u^{n+1}) / 2. */
 void sph_pressure_correct(sph_world *w, double dt) {
     int n = w->n;
@@ -299,26 +325,7 @@ void sph_pressure_correct(sph_world *w, double dt) {
         w->vs[i] += dt * av;
     }
     sph_boundary_sync(w, w->us, w->vs, 1);
-    double rho0 = w->par.rho0, maxerr = 0.0;
-#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(max : maxerr)
-    for (int i = 0; i < n; i++) {
-        if (w->kind[i] != SPH_FLUID) continue;
-        if (w->surf[i]) {
-            w->rho[i] = rho0;
-            continue;
-        }
-        double div = 0.0, ui = w->us[i], vi = w->vs[i];
-        double lxx = w->lxx[i], lxy = w->lxy[i], lyy = w->lyy[i];
-        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
-            int j = w->nb_j[k];
-            double gx = lxx * w->nb_gx[k] + lxy * w->nb_gy[k], gy = lxy * w->nb_gx[k] + lyy * w->nb_gy[k];
-            div += w->m[j] * ((ui - w->us[j]) * gx + (vi - w->vs[j]) * gy);
-        }
-        w->rho[i] += dt * div;
-        double e = fabs(w->rho[i] / rho0 - 1.0);
-        if (e > maxerr) maxerr = e;
-    }
-    w->st.max_density_error = maxerr;
+    w->st.max_density_error = advance_density(w, w->us, w->vs, dt, 1);
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) continue;
@@ -374,21 +381,7 @@ int sph_density_correct(sph_world *w) {
         dy[i] = ay;
     }
     sph_boundary_sync(w, dx, dy, 1);
-    double maxerr = 0.0;
-#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(max : maxerr)
-    for (int i = 0; i < n; i++) {
-        if (w->kind[i] != SPH_FLUID || w->surf[i]) continue;
-        double div = 0.0, lxx = w->lxx[i], lxy = w->lxy[i], lyy = w->lyy[i];
-        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
-            int j = w->nb_j[k];
-            double gx = lxx * w->nb_gx[k] + lxy * w->nb_gy[k], gy = lxy * w->nb_gx[k] + lyy * w->nb_gy[k];
-            div += w->m[j] * ((dx[i] - dx[j]) * gx + (dy[i] - dy[j]) * gy);
-        }
-        w->rho[i] += div;
-        double e = fabs(w->rho[i] / rho0 - 1.0);
-        if (e > maxerr) maxerr = e;
-    }
-    w->st.max_density_error = maxerr;
+    w->st.max_density_error = advance_density(w, dx, dy, 1.0, 0);
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) continue;
