@@ -53,10 +53,36 @@ void sph_viscous_rheology(sph_world *w) {
     sph_boundary_sync(w, w->eta, w->gd, 0);
 }
 
+/* The Morris coefficient of fluid pair k (i, j): c = m_j (eta_i + eta_j) F_ij / (rho_i rho_j). */
+static inline double fluid_coeff(const sph_world *w, int i, int j, int k) {
+    return w->m[j] * (w->eta[i] + w->eta[j]) * w->nb_f[k] / (w->rho[i] * w->rho[j]);
+}
+
+/* A wall neighbour j (pair k) of fluid particle i enters the Morris sum as
+ * cw (u_i - u_wall), cw = beta m_j 2 eta_i F_ij / (rho_i rho_j), beta the no-slip factor;
+ * returns cw and the wall velocity. */
+static inline double wall_coeff(const sph_world *w, int i, int j, int k, double *wx, double *wy) {
+    sph_plate_wall_velocity(w, j, wx, wy);
+    return sph_plate_noslip(w, i, j) * w->m[j] * 2.0 * w->eta[i] * w->nb_f[k] / (w->rho[i] * w->rho[j]);
+}
+
+/* The force along its axis that this pair puts on wall j's plate (0 for a fixed plate). */
+static inline double plate_pull(const sph_world *w, int i, int j, double cw, double ui, double vi,
+                                double wx, double wy) {
+    const sph_plate *pl = &w->plates[w->kind[j]];
+    if (pl->axis < 0) return 0.0;
+    return -w->m[i] * cw * (pl->axis == 0 ? (ui - wx) * w->gsx[j] : (vi - wy) * w->gsy[j]);
+}
+
+/* Whole-sample viscous force of each plate from the simulated part's sums. */
+static void set_plate_viscous_forces(sph_world *w, const double *f) {
+    for (int k = 0; k < w->nplates; k++) w->plates[k].force_visc = f[k] * (w->plates[k].doubled ? 2.0 : 1.0);
+}
+
 /* u* = u + dt (viscous + g) for fluid; walls keep the plate velocity. The viscous force
  * each plate takes from the fluid is accumulated on the way (whole sample). */
 void sph_viscous_explicit(sph_world *w, double dt) {
-    int n = w->n, np = w->nplates;
+    int n = w->n;
     double gx = w->par.gravity[0], gy = w->par.gravity[1];
     double fplate[SPH_MAX_PLATES] = {0};
 #pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : fplate[:SPH_MAX_PLATES])
@@ -65,7 +91,7 @@ void sph_viscous_explicit(sph_world *w, double dt) {
             sph_plate_wall_velocity(w, i, &w->us[i], &w->vs[i]);
             continue;
         }
-        double ui = w->u[i], vi = w->v[i], etai = w->eta[i], rhoi = w->rho[i];
+        double ui = w->u[i], vi = w->v[i];
         double au = 0, av = 0;
         for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
             int j = w->nb_j[k];
@@ -73,18 +99,13 @@ void sph_viscous_explicit(sph_world *w, double dt) {
             if (w->kind[j] == SPH_FLUID) {
                 du = ui - w->u[j];
                 dv = vi - w->v[j];
-                c = w->m[j] * (etai + w->eta[j]) * w->nb_f[k] / (rhoi * w->rho[j]);
+                c = fluid_coeff(w, i, j, k);
             } else {
-                double wx, wy, beta = sph_plate_noslip(w, i, j);
-                sph_plate_wall_velocity(w, j, &wx, &wy);
-                du = beta * (ui - wx);
-                dv = beta * (vi - wy);
-                c = w->m[j] * 2.0 * etai * w->nb_f[k] / (rhoi * w->rho[j]);
-                const sph_plate *pl = &w->plates[w->kind[j]];
-                if (pl->axis >= 0) {
-                    double fa = -w->m[i] * c * (pl->axis == 0 ? du * w->gsx[j] : dv * w->gsy[j]);
-                    fplate[w->kind[j]] += fa;
-                }
+                double wx, wy;
+                c = wall_coeff(w, i, j, k, &wx, &wy);
+                du = ui - wx;
+                dv = vi - wy;
+                fplate[w->kind[j]] += plate_pull(w, i, j, c, ui, vi, wx, wy);
             }
             au += c * du;
             av += c * dv;
@@ -92,8 +113,7 @@ void sph_viscous_explicit(sph_world *w, double dt) {
         w->us[i] = ui + dt * (au + gx);
         w->vs[i] = vi + dt * (av + gy);
     }
-    for (int k = 0; k < np; k++)
-        w->plates[k].force_visc = fplate[k] * (w->plates[k].doubled ? 2.0 : 1.0);
+    set_plate_viscous_forces(w, fplate);
     sph_boundary_sync(w, w->us, w->vs, 1);
 }
 
@@ -128,13 +148,13 @@ static void visc_assemble(sph_world *w, double dt, int comp) {
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int r = 0; r < nrows; r++) {
         int i = w->vrow_of[r], e = A->start[r] + 1;
-        double mi = w->m[i], etai = w->eta[i], rhoi = w->rho[i];
+        double mi = w->m[i];
         double diag = 1.0, rhs = (comp ? w->v[i] : w->u[i]) + dt * g;
         for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
             int j = w->nb_j[k];
             if (w->kind[j] == SPH_FLUID) {
                 int s = w->src[j];
-                double c = dt * w->m[j] * (etai + w->eta[j]) * w->nb_f[k] / (rhoi * w->rho[j]);
+                double c = dt * fluid_coeff(w, i, j, k);
                 double sg = comp ? w->gsy[j] : w->gsx[j];
                 diag -= c;
                 if (s == i) {
@@ -145,9 +165,7 @@ static void visc_assemble(sph_world *w, double dt, int comp) {
                     e++;
                 }
             } else {
-                double wx, wy, beta = sph_plate_noslip(w, i, j);
-                sph_plate_wall_velocity(w, j, &wx, &wy);
-                double c = dt * w->m[j] * 2.0 * etai * w->nb_f[k] / (rhoi * w->rho[j]) * beta;
+                double wx, wy, c = dt * wall_coeff(w, i, j, k, &wx, &wy);
                 diag -= c;
                 rhs -= c * (comp ? wy : wx);
             }
@@ -161,7 +179,7 @@ static void visc_assemble(sph_world *w, double dt, int comp) {
 }
 
 int sph_viscous_implicit(sph_world *w, double dt) {
-    int n = w->n, np = w->nplates, nrows = 0;
+    int n = w->n, nrows = 0;
     for (int i = 0; i < n; i++) w->row[i] = w->kind[i] == SPH_FLUID ? nrows++ : -1;
     if (reserve_visc(w, nrows)) return -1;
     for (int i = 0; i < n; i++)
@@ -212,17 +230,12 @@ int sph_viscous_implicit(sph_world *w, double dt) {
         for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
             int j = w->nb_j[k];
             if (w->kind[j] == SPH_FLUID) continue;
-            const sph_plate *pl = &w->plates[w->kind[j]];
-            if (pl->axis < 0) continue;
-            double wx, wy, beta = sph_plate_noslip(w, i, j);
-            sph_plate_wall_velocity(w, j, &wx, &wy);
-            double c = w->m[j] * 2.0 * w->eta[i] * w->nb_f[k] / (w->rho[i] * w->rho[j]);
-            double d = pl->axis == 0 ? beta * (w->us[i] - wx) * w->gsx[j] : beta * (w->vs[i] - wy) * w->gsy[j];
-            fplate[w->kind[j]] -= w->m[i] * c * d;
+            if (w->plates[w->kind[j]].axis < 0) continue;
+            double wx, wy, cw = wall_coeff(w, i, j, k, &wx, &wy);
+            fplate[w->kind[j]] += plate_pull(w, i, j, cw, w->us[i], w->vs[i], wx, wy);
         }
     }
-    for (int k = 0; k < np; k++)
-        w->plates[k].force_visc = fplate[k] * (w->plates[k].doubled ? 2.0 : 1.0);
+    set_plate_viscous_forces(w, fplate);
     sph_boundary_sync(w, w->us, w->vs, 1);
     return 0;
 }

@@ -34,7 +34,8 @@ T.case("Bingham squeeze, explicit against implicit viscosity", function()
   for k = 2, 4 do
     local d = math.abs(i[k] - e[k]) / e[k]
     print(string.format("# mean force over t in (%.1f, %.1f]: explicit %.3f implicit %.3f (%.1f %%)", (k - 1) / 10, k / 10, e[k], i[k], 100 * d))
-    -- measured differences 3.0, 2.1, 8.3 % (the last window holds the explicit run's
+    -- measured differences 3.0, 2.1, 8.3 % (2.7, 2.5, 9.3 % after a change of round-off
+    -- only: the runs are chaotic at that level; the last window holds the explicit run's
     -- largest spikes: 64 against a trend of 30 at t = 0.335). Tolerance 12 %.
     T.below(d, 0.12, string.format("explicit and implicit mean plate force agree within 12 %% over t in (%.1f, %.1f]", (k - 1) / 10, k / 10))
   end
