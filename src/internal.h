@@ -161,6 +161,8 @@ void sph_shifting_apply(sph_world *w, double dt);
 double sph_timestep_compute(sph_world *w);
 
 /* solver.c */
+/* realloc *p to count elements of elem bytes (at least one); -1 when out of memory, *p kept. */
+int sph_grow(void **p, size_t elem, int count);
 int sph_csr_reserve(sph_csr *a, int n, int nnz);
 void sph_csr_free(sph_csr *a);
 void sph_csr_matvec(const sph_csr *a, const double *x, double *y, int threads);

@@ -369,10 +369,11 @@ static int w_run(lua_State *L) {
         apply_laws(L, 1, w, now);
         double dt = fixed_dt > 0 ? fixed_dt : sph_world_next_dt(w);
         /* Land on the next output time by spreading the remaining interval evenly over the
-         * steps it needs, rather than cutting the last step short: the pressure carries the
-         * correction of the density error made over the previous steps, which scales as
-         * 1 / dt^2, so a step much shorter than the one before shows as a spike in the
-         * plate force (measured: 19 -> -9 for a step 0.54 times the one before). */
+         * steps it needs, rather than cutting the last step short: the pressure source
+         * div u* / dt carries the divergence the approximate projection left in u^n, so a
+         * step much shorter than the one before shows in the plate force (while the density
+         * correction sat inside the pressure, a step 0.54 times the one before took the
+         * force from 19 to -9). */
         double r = fmin(until_t, next_out) - now;
         if (dt >= r - eps) dt = r;
         else if (r < 1e6 * dt) dt = r / ceil(r / dt);

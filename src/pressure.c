@@ -279,6 +279,20 @@ int sph_pressure_solve(sph_world *w, double dt) {
     return 0;
 }
 
+/* -(grad f)_i / rho_i in the symmetric, momentum-conserving form
+ * -sum_j m_j (f_i / rho_i^2 + f_j / rho_j^2) grad_i W_ij (f synced on ghosts). */
+static inline void neg_grad(const sph_world *w, const double *f, int i, double *ax, double *ay) {
+    double fi = f[i] / (w->rho[i] * w->rho[i]), gx = 0.0, gy = 0.0;
+    for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
+        int j = w->nb_j[k];
+        double c = w->m[j] * (fi + f[j] / (w->rho[j] * w->rho[j]));
+        gx -= c * w->nb_gx[k];
+        gy -= c * w->nb_gy[k];
+    }
+    *ax = gx;
+    *ay = gy;
+}
+
 /* Continuity over interior fluid, rho_i += scale sum_j m_j (a_i - a_j) . L grad W_ij for the
  * vector field (ax, ay) (ghosts synced); free-surface particles are reset to rho0 when
  * reset_surface is set. Returns the max |rho / rho0 - 1| over interior fluid. */
@@ -314,13 +328,8 @@ void sph_pressure_correct(sph_world *w, double dt) {
             sph_plate_wall_velocity(w, i, &w->us[i], &w->vs[i]);
             continue;
         }
-        double pi = w->p[i] / (w->rho[i] * w->rho[i]), au = 0, av = 0;
-        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
-            int j = w->nb_j[k];
-            double c = w->m[j] * (pi + w->p[j] / (w->rho[j] * w->rho[j]));
-            au -= c * w->nb_gx[k];
-            av -= c * w->nb_gy[k];
-        }
+        double au, av;
+        neg_grad(w, w->p, i, &au, &av);
         w->us[i] += dt * au;
         w->vs[i] += dt * av;
     }
@@ -370,15 +379,7 @@ int sph_density_correct(sph_world *w) {
     for (int i = 0; i < n; i++) {
         dx[i] = dy[i] = 0.0;
         if (w->kind[i] != SPH_FLUID) continue;
-        double fi = w->phi[i] / (w->rho[i] * w->rho[i]), ax = 0, ay = 0;
-        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
-            int j = w->nb_j[k];
-            double c = w->m[j] * (fi + w->phi[j] / (w->rho[j] * w->rho[j]));
-            ax -= c * w->nb_gx[k];
-            ay -= c * w->nb_gy[k];
-        }
-        dx[i] = ax;
-        dy[i] = ay;
+        neg_grad(w, w->phi, i, &dx[i], &dy[i]);
     }
     sph_boundary_sync(w, dx, dy, 1);
     w->st.max_density_error = advance_density(w, dx, dy, 1.0, 0);

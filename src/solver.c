@@ -6,7 +6,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-static int grow(void **p, size_t elem, int count) {
+int sph_grow(void **p, size_t elem, int count) {
     void *q = realloc(*p, elem * (size_t)(count > 0 ? count : 1));
     if (!q) return -1;
     *p = q;
@@ -16,13 +16,13 @@ static int grow(void **p, size_t elem, int count) {
 int sph_csr_reserve(sph_csr *a, int n, int nnz) {
     if (n + 1 > a->cap) {
         int cap = n + 1 + n / 4;
-        if (grow((void **)&a->start, sizeof(int), cap) || grow((void **)&a->diag, sizeof(double), cap))
+        if (sph_grow((void **)&a->start, sizeof(int), cap) || sph_grow((void **)&a->diag, sizeof(double), cap))
             return -1;
         a->cap = cap;
     }
     if (nnz > a->nnz) {
         int cap = nnz + nnz / 4;
-        if (grow((void **)&a->col, sizeof(int), cap) || grow((void **)&a->val, sizeof(double), cap))
+        if (sph_grow((void **)&a->col, sizeof(int), cap) || sph_grow((void **)&a->val, sizeof(double), cap))
             return -1;
         a->nnz = cap;
     }
@@ -53,8 +53,8 @@ void sph_csr_matvec(const sph_csr *a, const double *x, double *y, int threads) {
 int sph_solver_reserve(sph_solver *s, int n) {
     if (n <= s->cap) return 0;
     int cap = n + n / 4 + 16;
-    if (grow((void **)&s->r, sizeof(double), cap) || grow((void **)&s->z, sizeof(double), cap) ||
-        grow((void **)&s->q, sizeof(double), cap) || grow((void **)&s->d, sizeof(double), cap))
+    if (sph_grow((void **)&s->r, sizeof(double), cap) || sph_grow((void **)&s->z, sizeof(double), cap) ||
+        sph_grow((void **)&s->q, sizeof(double), cap) || sph_grow((void **)&s->d, sizeof(double), cap))
         return -1;
     s->cap = cap;
     return 0;

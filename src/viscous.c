@@ -8,7 +8,6 @@
 #include "internal.h"
 
 #include <math.h>
-#include <stdlib.h>
 
 void sph_viscous_rheology(sph_world *w) {
     int n = w->n;
@@ -129,13 +128,9 @@ void sph_viscous_explicit(sph_world *w, double dt) {
 static int reserve_visc(sph_world *w, int nrows) {
     if (nrows <= w->vrows_cap && w->vb) return 0;
     int cap = nrows + nrows / 4 + 64;
-    double *b = realloc(w->vb, sizeof(double) * (size_t)cap);
-    if (b) w->vb = b;
-    double *x = realloc(w->vsol, sizeof(double) * (size_t)cap);
-    if (x) w->vsol = x;
-    int *r = realloc(w->vrow_of, sizeof(int) * (size_t)cap);
-    if (r) w->vrow_of = r;
-    if (!b || !x || !r) return sph_world_fail(w, "out of memory (%d viscous unknowns)", nrows);
+    if (sph_grow((void **)&w->vb, sizeof(double), cap) || sph_grow((void **)&w->vsol, sizeof(double), cap) ||
+        sph_grow((void **)&w->vrow_of, sizeof(int), cap))
+        return sph_world_fail(w, "out of memory (%d viscous unknowns)", nrows);
     w->vrows_cap = cap;
     return 0;
 }
@@ -180,6 +175,7 @@ static void visc_assemble(sph_world *w, double dt, int comp) {
 
 int sph_viscous_implicit(sph_world *w, double dt) {
     int n = w->n, nrows = 0;
+    /* one unknown per fluid particle; row[] is borrowed (the pressure system rebuilds it) */
     for (int i = 0; i < n; i++) w->row[i] = w->kind[i] == SPH_FLUID ? nrows++ : -1;
     if (reserve_visc(w, nrows)) return -1;
     for (int i = 0; i < n; i++)
