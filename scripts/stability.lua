@@ -9,7 +9,9 @@ local o = ... or {}
 local quick = (o.quick or 0) ~= 0
 
 local cases = {
-  { name = "Bn=100 load", mode = "load", Re = 1, Bn = 100, M = 800, F = -1000, t_end = 1 },
+  -- the paper's load relative to the yield stress (F = -2 tau0, as F = -10 at Bn = 5):
+  -- the ideal Bingham sample stops at h = (tau0 / 2F)^(1/3) = 0.63 whatever Bn
+  { name = "Bn=100 load", mode = "load", Re = 1, Bn = 100, M = 800, F = -200, t_end = 1 },
   { name = "M=1e4 Bn=5", mode = "velocity", Re = 1, Bn = 5, M = 1e4, t_end = 0.4 },
   { name = "Re=0.01", mode = "velocity", Re = 0.01, Bn = 0, t_end = 0.4 },
   { name = "Re=1000", mode = "velocity", Re = 1000, Bn = 0, t_end = 0.4 },
@@ -26,19 +28,19 @@ for _, c in ipairs(cases) do
     local w, top = squeeze.build{ dx = o.dx or 1 / 40, Re = c.Re, Bn = c.Bn, M = c.M, mode = c.mode, F = c.F,
                                   h_min = c.h_min or 0.3, world = { threads = o.threads } }
     local dx = o.dx or 1 / 40
-    local emax, hmin, backup, viters, ns = 0, top.position, 0, 0, 0
+    local hmin, backup = top.position, 0
+    -- checked after every step: the plate's travel back up, the target height
     local ok, err = pcall(function()
-      w:run{ until_t = t_end, every = t_end / 200, each = function(ww)
-        local s = ww:stats()
-        emax = math.max(emax, s.max_density_error)
-        viters, ns = viters + s.visc_iterations, ns + 1
+      while w.t < t_end - 1e-12 do
+        w:step()
         local h = top.position
         hmin = math.min(hmin, h)
         backup = math.max(backup, h - hmin)
-        if c.h_stop and h <= c.h_stop then return false end
-      end }
+        if c.h_stop and h <= c.h_stop then break end
+      end
     end)
     local s = w:stats()
+    local emax = s.peak_density_error -- the largest of any step
     local why = {}
     if not ok then why[#why + 1] = tostring(err) end
     if emax >= 0.01 then why[#why + 1] = string.format("density error %.4f >= 1 %%", emax) end
@@ -50,7 +52,7 @@ for _, c in ipairs(cases) do
     ran = ran + 1
     if not pass then failures = failures + 1 end
     print(string.format("%-20s %7.3g %8.1f %8d %9.1f %9.1f %8.4f %8.4f %s", c.name, w.t, s.wall_time, w.steps,
-      w.steps > 0 and s.solver_iterations_total / w.steps or 0, ns > 0 and viters / ns or 0, emax, top.position,
+      w.steps > 0 and s.solver_iterations_total / w.steps or 0, w.steps > 0 and s.visc_iterations_total / w.steps or 0, emax, top.position,
       pass and "pass" or ("FAIL: " .. table.concat(why, "; "))))
     io.stdout:flush()
   end

@@ -61,6 +61,7 @@ struct sph_world {
     double *ax, *ay;           /* acceleration of the last step (dt force limit)    */
     double *p, *rho, *m;       /* pressure, density, mass                           */
     double *phi;               /* density-correction potential (dt^2 p units)       */
+    double *dp;                /* scratch: the density correction's later passes    */
     double *eta, *gd, *divr;   /* apparent viscosity, shear rate, position div      */
     double *lxx, *lxy, *lyy;   /* kernel-gradient renormalisation (Bonet & Lok 1999) */
     double *gux, *guy, *gvx, *gvy; /* velocity gradient (du/dx, du/dy, dv/dx, dv/dy)  */

@@ -351,7 +351,25 @@ void sph_pressure_correct(sph_world *w, double dt) {
  * source gamma (rho0 - rho_i) / rho0, warm-started from the last phi; the particles move by
  * -grad phi / rho (the pressure's symmetric gradient) and their density follows by
  * continuity. Walls stay; free-surface particles hold phi = 0. */
+static int density_pass(sph_world *w, int pass);
+
+/* Up to density_passes corrections while the error stays above density_tol. One pass
+ * removes the smooth part of the error, not all of it: the matrix is the compact Laplacian
+ * and the displacement's divergence the wide SPH one, so a short-wavelength error (the
+ * column-to-column pattern a squeeze leaves next to the plate/free-surface corner) is only
+ * partly removed and builds up. Measured, Newtonian squeeze, Re = 1000, dx = 1/40, t = 0.4:
+ * max density error 1.6 % (1 pass), 0.92 % (2); Re = 1 to h = 0.34: 0.58 % with 2 passes. */
 int sph_density_correct(sph_world *w) {
+    int np = w->par.density_passes;
+    for (int q = 0; q < np; q++) {
+        if (q > 0 && w->st.max_density_error <= w->par.density_tol) break;
+        if (density_pass(w, q)) return -1;
+    }
+    return 0;
+}
+/* One correction; pass 0 warm-starts from the last step's phi and keeps its solution for
+ * the next step, later passes start from zero in a scratch array. */
+static int density_pass(sph_world *w, int pass) {
     double gamma = w->par.density_relax, rho0 = w->par.rho0;
     int n = w->n, nrows = w->nrows;
     if (gamma <= 0 || nrows == 0) return 0;
@@ -361,7 +379,7 @@ int sph_density_correct(sph_world *w) {
         int i = w->row_of[r];
         double s = w->kind[i] == SPH_FLUID ? gamma * (rho0 - w->rho[i]) / rho0 : 0.0;
         w->b[r] = -w->m[i] * s;
-        w->sol[r] = w->phi[i];
+        w->sol[r] = pass ? 0.0 : w->phi[i];
         if (fabs(s) > bmax) bmax = fabs(s);
     }
     if (bmax == 0.0) return 0;
@@ -373,13 +391,14 @@ int sph_density_correct(sph_world *w) {
                               w->steps, w->t, res.residual, res.iterations, w->par.tol, nrows);
     w->st.solver_iterations += res.iterations;
     w->st.solver_iterations_total += res.iterations;
-    scatter(w, w->sol, w->phi);
+    double *f = pass ? w->dp : w->phi;
+    scatter(w, w->sol, f);
     double *dx = w->xs, *dy = w->ys;
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int i = 0; i < n; i++) {
         dx[i] = dy[i] = 0.0;
         if (w->kind[i] != SPH_FLUID) continue;
-        neg_grad(w, w->phi, i, &dx[i], &dy[i]);
+        neg_grad(w, f, i, &dx[i], &dy[i]);
     }
     sph_boundary_sync(w, dx, dy, 1);
     w->st.max_density_error = advance_density(w, dx, dy, 1.0, 0);

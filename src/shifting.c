@@ -1,11 +1,18 @@
 /* Particle shifting (Xu, Stansby & Laurence 2009; Lind et al. 2012), with the displacement
  * scaled by the flow's own displacement per step (Skillen et al. 2013):
- *   dr_i = -D grad C_i,  D = min(A h U dt, h^2 / 4),   grad C_i = sum_j V_j grad_i W_ij (walls included),
+ *   dr_i = -D grad C_i,  D = min(A h U dt, h^2 / 4),
+ *   grad C_i = sum_j V_j (1 + R (W_ij / W(dx))^4) grad_i W_ij  (walls included),
  * U the largest fluid speed, A the `shifting` coefficient. Near a free surface (position
  * divergence below surface_div + 0.3) only the component tangent to the surface is kept,
  * so shifting never moves the surface itself. The velocity is carried to the new position
- * by a first-order Taylor step, u_i += (dr_i . grad) u_i. */
+ * by a first-order Taylor step, u_i += (dr_i . grad) u_i.
+ * The R term (Lind et al. 2012, R = 0.2) pushes apart pairs closer than dx. Without it a
+ * lattice stretched by the squeeze's extension stays uniform in concentration (grad C = 0)
+ * while its columns part: at h = 0.63 (Newtonian, Re = 1, dx = 1/40) a void opened on the
+ * mid-plane, 20 particles inside it were taken for free surface, the plate force fell from
+ * 16 to 10 and the max density error reached 8 %; with it, 0.86 % at worst to h = 0.34. */
 #include "internal.h"
+#include "kernel.h"
 
 #include <math.h>
 
@@ -20,6 +27,8 @@ void sph_shifting_apply(sph_world *w, double dt) {
      * run clean). With the implicit viscous step dt is large enough to reach the cap. */
     double D = fmin(A * h * umax * dt, 0.25 * h * h), cap = 0.1 * h;
     if (D <= 0) return;
+    /* anti-clustering (Lind et al. 2012): pairs closer than dx count more, R = 0.2, n = 4 */
+    double wdx = 1.0 / sph_kernel_value(w->dx, h), R = 0.2;
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) continue;
@@ -27,6 +36,12 @@ void sph_shifting_apply(sph_world *w, double dt) {
         for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
             int j = w->nb_j[k];
             double vol = w->m[j] / w->rho[j];
+            {
+                double ddx = w->x[i] - w->x[j], ddy = w->y[i] - w->y[j];
+                double q = sph_kernel_value(sqrt(ddx * ddx + ddy * ddy), h) * wdx;
+                q *= q;
+                vol *= 1.0 + R * q * q;
+            }
             cx += vol * w->nb_gx[k];
             cy += vol * w->nb_gy[k];
         }

@@ -57,6 +57,8 @@ typedef struct sph_params {
     double surface_div;    /* free surface where div r < surface_div (2D: 2 full)  */
     double density_relax;  /* fraction of the density error removed each step by the
                               density correction (pressure.c); 1 by default           */
+    int density_passes;    /* density corrections per step at most, while the
+                              error exceeds density_tol; default 2                  */
     double density_tol;    /* dt shrinks while the max density error exceeds this
                               (0: no control); default 0.005                        */
 } sph_params;
@@ -113,7 +115,9 @@ typedef struct sph_stats {
     long solver_iterations_total;
     int visc_iterations;      /* last implicit viscous solve (0: explicit) */
     double visc_residual;
-    double max_density_error; /* max |rho/rho0 - 1| over interior fluid   */
+    long visc_iterations_total;
+    double max_density_error; /* max |rho/rho0 - 1| over interior fluid, last step */
+    double peak_density_error; /* the largest max_density_error of any step so far */
     double kinetic_energy;    /* sum 1/2 m |u|^2 over fluid               */
     double area;              /* sum m / rho over fluid                   */
     double max_speed;

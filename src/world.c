@@ -24,6 +24,7 @@ void sph_params_default(sph_params *p) {
     p->surface_div = 1.5;
     p->density_tol = 0.005;
     p->density_relax = 1.0;
+    p->density_passes = 2;
 }
 
 int sph_world_fail(sph_world *w, const char *fmt, ...) {
@@ -43,7 +44,7 @@ static const char *check_params(const sph_params *p) {
         "cfl must be in (0, 1]", "periodic range must have lo < hi",
         "an axis cannot be both periodic and a symmetry plane", "tol must be in (0, 1)",
         "max_iter must be positive", "gravity must be finite", "density_relax must be in [0, 1]",
-        "shifting must be >= 0", "density_tol must be in [0, 1)"};
+        "shifting must be >= 0", "density_tol must be in [0, 1)", "density_passes must be in [1, 10]"};
     if (!(p->dx > 0 && isfinite(p->dx))) return bad[0];
     if (!(p->h >= 0 && isfinite(p->h))) return bad[1];
     if (!(p->rho0 > 0 && isfinite(p->rho0))) return bad[2];
@@ -58,6 +59,7 @@ static const char *check_params(const sph_params *p) {
     if (!(p->density_relax >= 0 && p->density_relax <= 1)) return bad[9];
     if (!(p->shifting >= 0)) return bad[10];
     if (!(p->density_tol >= 0 && p->density_tol < 1)) return bad[11];
+    if (!(p->density_passes >= 1 && p->density_passes <= 10)) return bad[12];
     return 0;
 }
 
@@ -89,7 +91,7 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
     {&w->x,   &w->y,   &w->u,   &w->v,   &w->us,  &w->vs,  &w->ax,       &w->ay,       \
      &w->p,   &w->rho, &w->m,   &w->eta, &w->gd,  &w->divr, &w->xs, &w->ys, &w->lxx,       \
      &w->lxy, &w->lyy, &w->gux, &w->guy, &w->gvx, &w->gvy, &w->phi, &w->psens[0], &w->psens[1], \
-     &w->psens[2], &w->psens[3]}
+     &w->psens[2], &w->psens[3], &w->dp}
 #define PARTICLE_INTS(w)                                                                    \
     {&w->kind, &w->mat, &w->id, &w->src, &w->row, &w->perm, &w->iscratch, &w->cell_of,     \
      &w->nb_count}
@@ -311,6 +313,9 @@ int sph_world_step(sph_world *w, double dt) {
     w->dt = dt;
     w->dt_prev = dt;
     w->steps++;
+    w->st.visc_iterations_total += w->st.visc_iterations;
+    if (w->st.max_density_error > w->st.peak_density_error)
+        w->st.peak_density_error = w->st.max_density_error;
     w->wall_time += omp_get_wtime() - t0;
     if (check_finite(w) || sph_plate_check_escape(w)) return -1;
     return 0;

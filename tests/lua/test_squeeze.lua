@@ -13,7 +13,7 @@ local function bingham(viscosity)
                                 world = { threads = o.threads, viscosity = viscosity } }
   local emax, win = 0, {}
   w:run{ until_t = 0.41, every = 0.005, each = function(ww)
-    emax = math.max(emax, ww:stats().max_density_error)
+    emax = ww:stats().peak_density_error -- the largest of any step so far
     local k = math.floor(ww.t / 0.1 - 1e-9) + 1 -- window (0, 0.1], (0.1, 0.2], ...
     win[k] = win[k] or { s = 0, n = 0 }
     win[k].s, win[k].n = win[k].s + top.force, win[k].n + 1
@@ -34,10 +34,10 @@ T.case("Bingham squeeze, explicit against implicit viscosity", function()
   for k = 2, 4 do
     local d = math.abs(i[k] - e[k]) / e[k]
     print(string.format("# mean force over t in (%.1f, %.1f]: explicit %.3f implicit %.3f (%.1f %%)", (k - 1) / 10, k / 10, e[k], i[k], 100 * d))
-    -- measured differences 3.0, 2.1, 8.3 % (2.7, 2.5, 9.3 % after a change of round-off
-    -- only: the runs are chaotic at that level; the last window holds the explicit run's
-    -- largest spikes: 64 against a trend of 30 at t = 0.335). Tolerance 12 %.
-    T.below(d, 0.12, string.format("explicit and implicit mean plate force agree within 12 %% over t in (%.1f, %.1f]", (k - 1) / 10, k / 10))
+    -- measured differences 1.1, 1.3, 1.8 % (with the anti-clustering shifting and two
+    -- density-correction passes; before them 3.0, 2.1, 8.3 %, and 2.7, 2.5, 9.3 % after a
+    -- change of round-off only: the runs are chaotic at the percent level). Tolerance 6 %.
+    T.below(d, 0.06, string.format("explicit and implicit mean plate force agree within 6 %% over t in (%.1f, %.1f]", (k - 1) / 10, k / 10))
   end
 end)
 
@@ -54,7 +54,9 @@ T.case("Newtonian squeeze against lubrication theory", function()
   local ratio = math.exp((sy - slope * sx) / n + slope * math.log(0.35)) / squeeze.newtonian_force(0.35)
   print(string.format("# Newtonian: %d samples in h in [%.3f, 0.5], log-log slope %.3f, fitted F(0.35) / lubrication %.4f, %d steps",
     n, top.position, slope, ratio, w.steps))
-  -- measured: slope -6.02, F(0.35) / (mu V / h^6) = 0.866 (implicit, dx = 1/40); explicit
+  -- measured: slope -5.95, F(0.35) / (mu V / h^6) = 0.876 (implicit, dx = 1/40; -6.02 and
+  -- 0.866 before the anti-clustering shifting, whose absence let a void open at h = 0.63
+  -- and the density error reach 8 % for a few steps); explicit
   -- viscosity gives 0.856 at dx = 1/40 and 0.869 at dx = 1/80: the 13 % below lubrication
   -- does not shrink with dx, it is the sample's finite aspect ratio (a / h = 4 at h = 0.35),
   -- which the a >> h theory leaves out. Tolerances: slope -6 +- 0.3, ratio 0.87 +- 0.06.
