@@ -20,6 +20,9 @@ T.case("world arguments", function()
   T.checkerror("symmetry plane", "periodic and symmetric axis", sph.world,
     { dx = 0.1, periodic = { x = { 0, 1 } }, symmetry = { x = 0 } })
   T.checkerror("rho", "negative rho", sph.world, { dx = 0.1, rho = -1 })
+  T.checkerror("density_passes", "density_passes = 0", sph.world, { dx = 0.1, density_passes = 0 })
+  T.checkerror("density_tol", "density_tol = 1", sph.world, { dx = 0.1, density_tol = 1 })
+  T.checkerror("density_relax", "density_relax = 2", sph.world, { dx = 0.1, density_relax = 2 })
   T.checkerror("table expected", "world needs a table", sph.world, 3)
 end)
 
