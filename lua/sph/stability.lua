@@ -1,0 +1,104 @@
+-- The stability suite's cases and checks (issue 3), shared by scripts/stability.lua (each
+-- case to its end, `make stability`) and tests/lua/test_stability.lua (the reduced
+-- versions). A case passes when it finishes with no NaN and no particle through a plate
+-- (the engine stops with a message on either), a max density error under 1 % at every
+-- step, and, under a constant load, a plate that never moves back up by more than a
+-- particle spacing. The free surface is checked too (surface_check): no particle inside the
+-- sample taken for free surface, none on its outer edge missed.
+local squeeze = require "sph.squeeze"
+
+local S = {}
+
+S.cases = {
+  -- the paper's load relative to the yield stress (F = -2 tau0, as F = -10 at Bn = 5):
+  -- the ideal Bingham sample stops at h = (tau0 / 2F)^(1/3) = 0.63 whatever Bn
+  { name = "Bn=100 load", mode = "load", Re = 1, Bn = 100, M = 800, F = -200, t_end = 1 },
+  { name = "M=1e4 Bn=5", mode = "velocity", Re = 1, Bn = 5, M = 1e4, t_end = 0.4 },
+  { name = "Re=0.01", mode = "velocity", Re = 0.01, Bn = 0, t_end = 0.4 },
+  { name = "Re=1000", mode = "velocity", Re = 1000, Bn = 0, t_end = 0.4 },
+  { name = "thin film h=0.15", mode = "velocity", Re = 1, Bn = 0, t_end = 0.86, h_stop = 0.15, h_min = 0.15 },
+  { name = "paper Bn=5 F*=-10", mode = "load", Re = 1, Bn = 5, M = 800, F = -10, t_end = 2 },
+}
+
+function S.find(name)
+  for _, c in ipairs(S.cases) do
+    if c.name == name then return c end
+  end
+  error("no stability case named '" .. tostring(name) .. "'")
+end
+
+-- Free-surface flags against the sample's outline, in rows of height dx: a surface
+-- particle more than 3 dx inside the outermost particle of its row and the two rows beside
+-- it is false ("inside"); the outermost particle of a row not flagged is "missing", except
+-- in the rows that touch a plate (within dx of its face: the contact line, whose particles
+-- have the wall in their support and are held by it, not at p = 0). The half sample's
+-- other sides are the symmetry plane and the plates, with no free surface.
+function S.surface_check(w, dx, y_lo, y_hi)
+  local x, y, s = w:field("x"), w:field("y"), w:field("surface")
+  local outer = {}
+  for k = 1, #x do
+    local r = math.floor(y[k] / dx)
+    if not outer[r] or x[k] > outer[r] then outer[r] = x[k] end
+  end
+  local inside, missing = 0, 0
+  for k = 1, #x do
+    local r = math.floor(y[k] / dx)
+    local far = math.max(outer[r - 1] or -math.huge, outer[r], outer[r + 1] or -math.huge)
+    if s[k] == 1 and x[k] < far - 3 * dx then inside = inside + 1 end
+    if s[k] == 0 and x[k] >= outer[r] and y[k] > y_lo + dx and y[k] < y_hi - dx then
+      missing = missing + 1
+    end
+  end
+  return inside, missing
+end
+
+-- Runs case c to t_end (default c.t_end); opts: dx (default 1/40), threads, world (more
+-- sph.world options), check_every (steps between surface checks, default 20). Returns a
+-- table: ok, err (the engine's message), t, steps, wall, p_iter and v_iter (per step),
+-- emax (largest max density error of any step), h, backup (largest rise of a loaded plate
+-- above its lowest position), inside and missing (the surface checks' worst counts), why
+-- (the list of failed criteria) and pass.
+function S.run(c, t_end, opts)
+  opts = opts or {}
+  t_end = t_end or c.t_end
+  local dx = opts.dx or 1 / 40
+  local wopts = { threads = opts.threads }
+  for k, v in pairs(opts.world or {}) do wopts[k] = v end
+  local w, top = squeeze.build{ dx = dx, Re = c.Re, Bn = c.Bn, M = c.M, mode = c.mode, F = c.F,
+                                h_min = c.h_min or 0.3, world = wopts }
+  local every = opts.check_every or 20
+  local hmin, backup, inside, missing = top.position, 0, 0, 0
+  local ok, err = pcall(function()
+    while w.t < t_end - 1e-12 do
+      w:step()
+      local h = top.position
+      hmin = math.min(hmin, h)
+      backup = math.max(backup, h - hmin)
+      if w.steps % every == 0 then
+        local a, b = S.surface_check(w, dx, 0, h)
+        inside, missing = math.max(inside, a), math.max(missing, b)
+      end
+      if c.h_stop and h <= c.h_stop then break end
+    end
+  end)
+  local s = w:stats()
+  local r = { ok = ok, err = not ok and tostring(err) or nil, t = w.t, steps = w.steps, wall = s.wall_time,
+              p_iter = w.steps > 0 and s.solver_iterations_total / w.steps or 0,
+              v_iter = w.steps > 0 and s.visc_iterations_total / w.steps or 0,
+              emax = s.peak_density_error, h = top.position, backup = backup,
+              inside = inside, missing = missing, why = {} }
+  if not ok then r.why[#r.why + 1] = r.err end
+  if r.emax >= 0.01 then r.why[#r.why + 1] = string.format("density error %.4f >= 1 %%", r.emax) end
+  if c.mode == "load" and backup > dx then
+    r.why[#r.why + 1] = string.format("plate moved back up %.4f > dx", backup)
+  end
+  if c.h_stop and ok and t_end >= c.t_end and top.position > c.h_stop + 1e-9 then
+    r.why[#r.why + 1] = string.format("did not reach h = %g", c.h_stop)
+  end
+  if inside > 0 then r.why[#r.why + 1] = string.format("%d particles inside taken for free surface", inside) end
+  if missing > 0 then r.why[#r.why + 1] = string.format("%d edge particles not taken for free surface", missing) end
+  r.pass = #r.why == 0
+  return r
+end
+
+return S
