@@ -28,7 +28,7 @@ void sph_shifting_apply(sph_world *w, double dt) {
     double D = fmin(A * h * umax * dt, 0.25 * h * h), cap = 0.1 * h;
     if (D <= 0) return;
     /* anti-clustering (Lind et al. 2012): pairs closer than dx count more, R = 0.2, n = 4 */
-    double wdx = 1.0 / sph_kernel_value(w->dx, h), R = 0.2;
+    double wdx = 1.0 / sph_kernel_value(w->dx, h), R = 0.2, dmin = 0.5 * w->dx;
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) continue;
@@ -46,7 +46,7 @@ void sph_shifting_apply(sph_world *w, double dt) {
             cy += vol * w->nb_gy[k];
         }
         double sx = -D * cx, sy = -D * cy;
-        if (w->divr[i] < near) { /* tangential only: n = grad C / |grad C| */
+        if (w->surf[i] || w->divr[i] < near) { /* tangential only: n = grad C / |grad C| */
             double c = hypot(cx, cy);
             if (c > 0) {
                 double nx = cx / c, ny = cy / c, dn = sx * nx + sy * ny;
@@ -58,6 +58,24 @@ void sph_shifting_apply(sph_world *w, double dt) {
         if (s > cap) {
             sx *= cap / s;
             sy *= cap / s;
+        }
+        /* Minimum distance: pairs closer than dmin are pushed apart to dmin (half each; the
+         * whole way from a wall), whatever the surface. Neither the pressure (p = 0 on the
+         * free surface) nor grad C (grad W vanishes as r -> 0) parts two particles that
+         * meet on the free surface: measured, Newtonian squeeze at Re = 0.01, four
+         * particles within 0.01 dx of each other at the lower contact line by t = 0.39. */
+        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
+            int j = w->nb_j[k];
+            double ddx = w->x[i] - w->x[j], ddy = w->y[i] - w->y[j], r2 = ddx * ddx + ddy * ddy;
+            if (r2 >= dmin * dmin) continue;
+            double r = sqrt(r2), push = (dmin - r) * (w->kind[j] == SPH_FLUID ? 0.5 : 1.0);
+            if (r > 1e-9 * dmin) {
+                sx += push * ddx / r;
+                sy += push * ddy / r;
+            } else { /* coincident: part them along the line of their ids */
+                double sg = w->id[i] < w->id[w->src[j]] ? -1.0 : 1.0;
+                sx += sg * push;
+            }
         }
         w->xs[i] = sx;
         w->ys[i] = sy;

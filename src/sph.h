@@ -58,7 +58,7 @@ typedef struct sph_params {
     double density_relax;  /* fraction of the density error removed each step by the
                               density correction (pressure.c); 1 by default           */
     int density_passes;    /* density corrections per step at most, while the
-                              error exceeds density_tol; default 2                  */
+                              error exceeds density_tol; default 8                  */
     double density_tol;    /* dt shrinks while the max density error exceeds this
                               (0: no control); default 0.005                        */
 } sph_params;
@@ -130,7 +130,8 @@ typedef struct sph_stats {
 void sph_world_stats(const sph_world *w, sph_stats *s);
 
 /* Per-fluid-particle fields (in the engine's current order). Names: x y u v p rho eta
- * gammadot stress yielded speed surface material. Returns the count written into out
+ * gammadot stress yielded speed surface material id rho_sum (kernel-summation density)
+ * divr (position divergence, about 2 in the bulk). Returns the count written into out
  * (which must hold sph_world_nfluid values) or -1 for an unknown name. */
 int sph_world_nfluid(const sph_world *w);
 int sph_world_field(const sph_world *w, const char *name, double *out);

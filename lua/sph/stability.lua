@@ -27,26 +27,57 @@ function S.find(name)
   error("no stability case named '" .. tostring(name) .. "'")
 end
 
--- Free-surface flags against the sample's outline, in rows of height dx: a surface
+-- Free-surface flags against the sample's outline (its body's: droplets thrown off do not
+-- count), in rows of height dx: a surface
 -- particle more than 3 dx inside the outermost particle of its row and the two rows beside
--- it is false ("inside"); the outermost particle of a row not flagged is "missing", except
--- in the rows that touch a plate (within dx of its face: the contact line, whose particles
--- have the wall in their support and are held by it, not at p = 0). The half sample's
--- other sides are the symmetry plane and the plates, with no free surface.
+-- it is false ("inside"); the outermost particle of a row not flagged is "missing" when it
+-- is exposed, i.e. no fluid particle lies in the 90-degree cone facing outwards (+x) within
+-- 1.5 dx of it (a particle with a surface particle diagonally in front of it, 0.8 dx away,
+-- is the second layer, not the edge); rows that touch a plate (within dx of its face: the
+-- contact line, whose particles have the wall in their support and are held by it, not at
+-- p = 0) are not checked. The half sample's other sides are the symmetry plane and the
+-- plates, with no free surface.
 function S.surface_check(w, dx, y_lo, y_hi)
   local x, y, s = w:field("x"), w:field("y"), w:field("surface")
+  -- the outline is the body's, not the spray's: a particle with fewer than 3 others within
+  -- 1.5 dx (a droplet thrown off the contact line, as at Re = 1000) does not set it
+  local cells = {}
+  local function key(i, j) return i * 1000003 + j end
+  for k = 1, #x do
+    local c = key(math.floor(x[k] / dx), math.floor(y[k] / dx))
+    local l = cells[c]
+    if not l then l = {}; cells[c] = l end
+    l[#l + 1] = k
+  end
+  local r2 = (1.5 * dx) ^ 2
+  local function body(k)
+    local ci, cj, n = math.floor(x[k] / dx), math.floor(y[k] / dx), 0
+    for i = ci - 2, ci + 2 do
+      for j = cj - 2, cj + 2 do
+        for _, q in ipairs(cells[key(i, j)] or {}) do
+          if q ~= k and (x[q] - x[k]) ^ 2 + (y[q] - y[k]) ^ 2 < r2 then n = n + 1 end
+        end
+      end
+    end
+    return n >= 3
+  end
   local outer = {}
   for k = 1, #x do
     local r = math.floor(y[k] / dx)
-    if not outer[r] or x[k] > outer[r] then outer[r] = x[k] end
+    if (not outer[r] or x[k] > outer[r]) and body(k) then outer[r] = x[k] end
   end
   local inside, missing = 0, 0
   for k = 1, #x do
     local r = math.floor(y[k] / dx)
-    local far = math.max(outer[r - 1] or -math.huge, outer[r], outer[r + 1] or -math.huge)
+    local far = math.max(outer[r - 1] or -math.huge, outer[r] or -math.huge, outer[r + 1] or -math.huge)
     if s[k] == 1 and x[k] < far - 3 * dx then inside = inside + 1 end
-    if s[k] == 0 and x[k] >= outer[r] and y[k] > y_lo + dx and y[k] < y_hi - dx then
-      missing = missing + 1
+    if s[k] == 0 and outer[r] and x[k] >= outer[r] and y[k] > y_lo + dx and y[k] < y_hi - dx then
+      local exposed = true
+      for q = 1, #x do
+        local ax, ay = x[q] - x[k], math.abs(y[q] - y[k])
+        if q ~= k and ax > ay and ax * ax + ay * ay < (1.5 * dx) ^ 2 then exposed = false break end
+      end
+      if exposed then missing = missing + 1 end
     end
   end
   return inside, missing
