@@ -16,6 +16,7 @@ typedef struct sph_plate {
     int axis;            /* -1 fixed, 0 x, 1 y                                        */
     sph_plate_mode mode;
     double vel;          /* velocity along the axis this step (m/s)                  */
+    double slide[2];     /* surface velocity: walls carry it, particles stay put      */
     double vel_new;      /* V^{n+1} of a loaded plate, from the pressure solve        */
     double load;         /* applied load along the axis (LOAD mode), whole sample    */
     double mass;         /* whole-sample mass                                         */
@@ -109,6 +110,7 @@ struct sph_world {
     double *bk[SPH_MAX_LOADED], *solk[SPH_MAX_LOADED]; /* loaded plates' sensitivities */
     int rows_cap;
     int nrows;
+    int pin;                   /* pinned pressure unknown (no free surface) or -1    */
     int *row_of;               /* row -> particle                                   */
 
     double t, dt, wall_time;
@@ -144,6 +146,7 @@ int sph_plate_fill(sph_world *w, const double rect[4], int axis);
 double sph_plate_noslip(const sph_world *w, int a, int b);
 /* Velocity of wall particle b along x, y. */
 void sph_plate_wall_velocity(const sph_world *w, int b, double *vx, double *vy);
+void sph_plate_rigid_velocity(const sph_world *w, int b, double *vx, double *vy);
 void sph_plate_prepare(sph_world *w);
 void sph_plate_move(sph_world *w, int k, double dpos);
 int sph_plate_check_escape(sph_world *w);

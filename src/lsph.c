@@ -259,9 +259,22 @@ static int w_fill(lua_State *L) {
 
 static int w_plate(lua_State *L) {
     lworld *lw = check_world(L, 1);
-    static const char *const keys[] = {"rect", "axis", "mass", 0};
+    static const char *const keys[] = {"rect", "axis", "mass", "slide", 0};
     luaL_checktype(L, 2, LUA_TTABLE);
     sph_lua_opt_only(L, 2, "plate", keys);
+    double slide[2] = {0, 0};
+    int ts = lua_getfield(L, 2, "slide");
+    if (ts != LUA_TNIL) {
+        int ok = ts == LUA_TTABLE;
+        for (int q = 0; ok && q < 2; q++) {
+            lua_rawgeti(L, -1, q + 1);
+            ok = lua_type(L, -1) == LUA_TNUMBER && isfinite(lua_tonumber(L, -1));
+            if (ok) slide[q] = lua_tonumber(L, -1);
+            lua_pop(L, 1);
+        }
+        if (!ok) luaL_error(L, "bad argument to 'plate' (slide: {ux, uy} of finite numbers expected)");
+    }
+    lua_pop(L, 1);
     double r[4];
     opt_rect(L, 2, "plate", r);
     int axis = -1;
@@ -279,6 +292,7 @@ static int w_plate(lua_State *L) {
     int k = sph_world_plate(lw->w, r, axis);
     if (k < 0) return engine_error(L, lw->w);
     if (mass > 0) sph_plate_set_mass(lw->w, k, mass);
+    sph_plate_set_slide(lw->w, k, slide[0], slide[1]);
     lplate *lp = lua_newuserdatauv(L, sizeof *lp, 1);
     lp->index = k;
     luaL_setmetatable(L, PLATE);
@@ -465,6 +479,35 @@ static int w_field(lua_State *L) {
     return 1;
 }
 
+/* w:set_velocity(us, vs): one value per fluid particle each, in the order of w:field
+ * (either may be nil to keep that component). */
+static int w_set_velocity(lua_State *L) {
+    lworld *lw = check_world(L, 1);
+    lua_settop(L, 3);
+    int n = sph_world_nfluid(lw->w);
+    double *buf[2] = {0, 0};
+    for (int c = 0; c < 2; c++) {
+        int a = c + 2;
+        if (lua_isnoneornil(L, a)) continue;
+        luaL_checktype(L, a, LUA_TTABLE);
+        if ((int)luaL_len(L, a) != n)
+            return luaL_error(L, "bad argument #%d to 'set_velocity' (%d values expected, one per fluid particle, got %d)",
+                              c + 1, n, (int)luaL_len(L, a));
+        buf[c] = lua_newuserdatauv(L, sizeof(double) * (size_t)(n > 0 ? n : 1), 0);
+        for (int i = 0; i < n; i++) {
+            lua_rawgeti(L, a, i + 1);
+            if (lua_type(L, -1) != LUA_TNUMBER)
+                return luaL_error(L, "bad argument #%d to 'set_velocity' (number expected at [%d], got %s)", c + 1,
+                                  i + 1, luaL_typename(L, -1));
+            buf[c][i] = lua_tonumber(L, -1);
+            lua_pop(L, 1);
+        }
+    }
+    if (sph_world_set_velocity(lw->w, buf[0], buf[1]) < 0) return engine_error(L, lw->w);
+    lua_settop(L, 1);
+    return 1;
+}
+
 static int write_result(lua_State *L, sph_world *w, int rc) {
     if (rc < 0) {
         luaL_pushfail(L);
@@ -539,6 +582,25 @@ static int set_law(lua_State *L, int load) {
 }
 
 static int p_velocity(lua_State *L) { return set_law(L, 0); }
+
+/* plate:slide(ux, uy) sets the surface velocity (returns the plate); plate:slide() returns
+ * ux, uy. */
+static int p_slide(lua_State *L) {
+    lplate *lp;
+    sph_world *w = plate_world(L, 1, &lp);
+    if (lua_gettop(L) == 1) {
+        double s[2];
+        sph_plate_slide(w, lp->index, s);
+        lua_pushnumber(L, s[0]);
+        lua_pushnumber(L, s[1]);
+        return 2;
+    }
+    double sx = luaL_checknumber(L, 2), sy = luaL_checknumber(L, 3);
+    if (!isfinite(sx) || !isfinite(sy)) return luaL_error(L, "bad argument to 'slide' (finite numbers expected)");
+    if (sph_plate_set_slide(w, lp->index, sx, sy) < 0) return engine_error(L, w);
+    lua_settop(L, 1);
+    return 1;
+}
 static int p_load(lua_State *L) { return set_law(L, 1); }
 
 static int p_index(lua_State *L) {
@@ -567,6 +629,7 @@ static int p_index(lua_State *L) {
             lua_rawseti(L, -2, q + 1);
         }
     } else if (!strcmp(k, "load")) lua_pushcfunction(L, p_load);
+    else if (!strcmp(k, "slide")) lua_pushcfunction(L, p_slide);
     else lua_pushnil(L);
     return 1;
 }
@@ -606,6 +669,7 @@ static int number_call(lua_State *L) {
 static const luaL_Reg world_methods[] = {{"fill", w_fill},           {"plate", w_plate},
                                          {"step", w_step},           {"run", w_run},
                                          {"stats", w_stats},         {"field", w_field},
+                                         {"set_velocity", w_set_velocity},
                                          {"write_csv", w_write_csv}, {"write_vtk", w_write_vtk},
                                          {"close", w_close},         {0, 0}};
 

@@ -37,6 +37,7 @@ int sph_plate_fill(sph_world *w, const double rect[4], int axis) {
     pl->axis = axis;
     pl->mode = SPH_PLATE_FIXED;
     pl->vel = pl->vel_new = pl->load = pl->force = pl->force_visc = 0.0;
+    pl->slide[0] = pl->slide[1] = 0.0;
     pl->mass_set = 0;
     pl->face_side = 0;
     pl->doubled = 0;
@@ -109,7 +110,23 @@ double sph_plate_position(const sph_world *w, int k) {
     return side > 0 ? pl->rect[a + 2] : pl->rect[a];
 }
 
+/* The velocity wall particle b carries in the no-slip extrapolation: the plate's rigid
+ * velocity along its axis plus its surface (slide) velocity, with b's mirror signs. */
 void sph_plate_wall_velocity(const sph_world *w, int b, double *vx, double *vy) {
+    const sph_plate *pl = &w->plates[w->kind[b]];
+    *vx = pl->slide[0] * w->gsx[b];
+    *vy = pl->slide[1] * w->gsy[b];
+    if (pl->axis == 0) *vx += pl->vel * w->gsx[b];
+    else if (pl->axis == 1) *vy += pl->vel * w->gsy[b];
+}
+
+/* The plate's rigid velocity alone, without the slide: what the pressure source and the
+ * continuity see. A slide is tangential to the face, so on a flat face its divergence
+ * vanishes by symmetry, but where a sliding lid meets a fixed wall the kernel sums see a
+ * velocity jump along the face: with the slide in the source (measured, cavity at
+ * dx = 1/20) the corner particles were driven into the corners at 1.6 U within 10 steps
+ * and the flow under the lid ran backwards. */
+void sph_plate_rigid_velocity(const sph_world *w, int b, double *vx, double *vy) {
     const sph_plate *pl = &w->plates[w->kind[b]];
     *vx = *vy = 0.0;
     if (pl->axis == 0) *vx = pl->vel * w->gsx[b];

@@ -62,7 +62,46 @@ static inline void src_velocity(const sph_world *w, int j, double *vx, double *v
         *vx = *vy = 0.0;
         return;
     }
-    sph_plate_wall_velocity(w, j, vx, vy);
+    sph_plate_rigid_velocity(w, j, vx, vy);
+}
+
+/* sum_j m_j (u*_i - u*_j) . L grad W_ij, the source's divergence at particle i. */
+static double source_div(const sph_world *w, int i) {
+    double wi_x, wi_y, div = 0.0;
+    src_velocity(w, i, &wi_x, &wi_y);
+    int fl = w->kind[i] == SPH_FLUID;
+    double lxx = fl ? w->lxx[i] : 1.0, lxy = fl ? w->lxy[i] : 0.0, lyy = fl ? w->lyy[i] : 1.0;
+    for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
+        int j = w->nb_j[k];
+        double wj_x, wj_y;
+        src_velocity(w, j, &wj_x, &wj_y);
+        double gx = lxx * w->nb_gx[k] + lxy * w->nb_gy[k], gy = lxy * w->nb_gx[k] + lyy * w->nb_gy[k];
+        div += w->m[j] * ((wi_x - wj_x) * gx + (wi_y - wj_y) * gy);
+    }
+    return div;
+}
+
+/* Without a free surface (closed or periodic) the matrix has the constants as its null
+ * space and one unknown, w->pin, is held at 0. The system is solvable only if the sources
+ * sum to zero over all rows and the pin; otherwise the pin's own equation is violated by
+ * that sum, and it acts as a point source or sink: measured, lid-driven cavity at
+ * dx = 1/20, the pinned corner particle was sucked through the wall at t = 0.34. The
+ * discrete sum is not zero (a kernel sum is not exactly a divergence; a closed box cannot
+ * change its volume, so the mean density error cannot be corrected either), so the mean
+ * source is removed: fluid rows get b_r -= m_i S / sum(m_fluid), S = sum of all rows'
+ * sources plus pin_source (the pin's, in the same mass-scaled form). */
+static void make_compatible(sph_world *w, double pin_source) {
+    double S = pin_source, M = w->m[w->pin];
+    for (int r = 0; r < w->nrows; r++) {
+        int i = w->row_of[r];
+        S += w->b[r];
+        if (w->kind[i] == SPH_FLUID) M += w->m[i];
+    }
+    double s = S / M;
+    for (int r = 0; r < w->nrows; r++) {
+        int i = w->row_of[r];
+        if (w->kind[i] == SPH_FLUID) w->b[r] -= w->m[i] * s;
+    }
 }
 
 /* d(velocity of j)/d V_k */
@@ -159,6 +198,7 @@ int sph_pressure_solve(sph_world *w, double dt) {
     for (int i = 0; i < n; i++)
         if (w->row[i] >= 0) w->row_of[w->row[i]] = i;
     w->nrows = nrows;
+    w->pin = pin;
 
     /* structure: one diagonal plus one entry per neighbour with an unknown */
     sph_csr *A = &w->A;
@@ -223,6 +263,8 @@ int sph_pressure_solve(sph_world *w, double dt) {
         }
         w->sol[r] = p0;
     }
+
+    if (pin >= 0) make_compatible(w, w->m[pin] * source_div(w, pin) / (rho0 * dt));
 
     double tol = w->par.tol;
     int iters = 0;
@@ -325,7 +367,7 @@ void sph_pressure_correct(sph_world *w, double dt) {
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) {
-            sph_plate_wall_velocity(w, i, &w->us[i], &w->vs[i]);
+            sph_plate_rigid_velocity(w, i, &w->us[i], &w->vs[i]);
             continue;
         }
         double au, av;
@@ -390,6 +432,7 @@ static int density_pass(sph_world *w, int pass) {
         if (fabs(s) > bmax) bmax = fabs(s);
     }
     if (bmax == 0.0) return 0;
+    if (w->pin >= 0) make_compatible(w, -w->m[w->pin] * gamma * (rho0 - w->rho[w->pin]) / rho0);
     sph_solve_result res = sph_solver_pcg(&w->solver, &w->A, w->b, w->sol, w->par.tol, w->par.max_iter, w->threads);
     if (!res.converged)
         return sph_world_fail(w,

@@ -84,6 +84,11 @@ typedef enum { SPH_PLATE_FIXED = 0, SPH_PLATE_VELOCITY = 1, SPH_PLATE_LOAD = 2 }
 int sph_plate_set_velocity(sph_world *w, int plate, double v);
 int sph_plate_set_load(sph_world *w, int plate, double force);
 int sph_plate_set_mass(sph_world *w, int plate, double mass);
+/* Surface velocity (sx, sy): the wall particles carry it in the no-slip extrapolation and
+ * the pressure source but stay in place (a lid that slides along itself, a belt), on top
+ * of the plate's own velocity along its axis. Any plate, fixed or not; 0 by default. */
+int sph_plate_set_slide(sph_world *w, int plate, double sx, double sy);
+void sph_plate_slide(const sph_world *w, int plate, double slide[2]);
 sph_plate_mode sph_plate_mode_of(const sph_world *w, int plate);
 int sph_plate_axis(const sph_world *w, int plate);
 /* Coordinate along the axis of the face that touches the fluid. */
@@ -137,6 +142,9 @@ int sph_world_nfluid(const sph_world *w);
 int sph_world_field(const sph_world *w, const char *name, double *out);
 /* Every field name, NULL-terminated. */
 const char *const *sph_world_field_names(void);
+/* Set the velocity of every fluid particle, in the order of sph_world_field (u or v may be
+ * 0 to keep that component): initial conditions such as the Taylor-Green vortex. */
+int sph_world_set_velocity(sph_world *w, const double *u, const double *v);
 
 /* Output. 0 or -1 with a message. */
 int sph_world_write_csv(sph_world *w, const char *file);

@@ -27,7 +27,8 @@ double sph_timestep_compute(sph_world *w) {
     amax = sqrt(amax);
     for (int k = 0; k < w->nplates; k++) {
         const sph_plate *pl = &w->plates[k];
-        if (fabs(pl->vel) > umax) umax = fabs(pl->vel);
+        double vs = fabs(pl->vel) + hypot(pl->slide[0], pl->slide[1]);
+        if (vs > umax) umax = vs;
         if (pl->mode == SPH_PLATE_LOAD && pl->mass > 0) {
             double a = fabs(pl->load + pl->force) / pl->mass;
             if (a > amax) amax = a;

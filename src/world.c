@@ -76,6 +76,7 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
         return 0;
     }
     w->par = *p;
+    w->pin = -1;
     w->dx = p->dx;
     w->h = p->h > 0 ? p->h : p->dx;
     w->par.h = w->h;
@@ -434,6 +435,24 @@ int sph_world_field(const sph_world *w, const char *name, double *out) {
     return c;
 }
 
+int sph_world_set_velocity(sph_world *w, const double *u, const double *v) {
+    int c = 0;
+    for (int i = 0; i < w->n; i++) {
+        if (w->kind[i] != SPH_FLUID) continue;
+        if ((u && !isfinite(u[c])) || (v && !isfinite(v[c])))
+            return sph_world_fail(w, "velocity of fluid particle %d is not finite", c + 1);
+        c++;
+    }
+    c = 0;
+    for (int i = 0; i < w->n; i++) {
+        if (w->kind[i] != SPH_FLUID) continue;
+        if (u) w->u[i] = u[c];
+        if (v) w->v[i] = v[c];
+        c++;
+    }
+    return 0;
+}
+
 /* plate accessors (whole-sample values) */
 static int plate_ok(sph_world *w, int k) {
     if (k < 0 || k >= w->nplates) return sph_world_fail(w, "no plate %d", k + 1);
@@ -465,6 +484,20 @@ int sph_plate_set_mass(sph_world *w, int k, double m) {
     w->plates[k].mass = m;
     w->plates[k].mass_set = 1;
     return 0;
+}
+
+int sph_plate_set_slide(sph_world *w, int k, double sx, double sy) {
+    if (plate_ok(w, k)) return -1;
+    if (!isfinite(sx) || !isfinite(sy))
+        return sph_world_fail(w, "plate %d: slide velocity (%g, %g) is not finite", k + 1, sx, sy);
+    w->plates[k].slide[0] = sx;
+    w->plates[k].slide[1] = sy;
+    return 0;
+}
+
+void sph_plate_slide(const sph_world *w, int k, double slide[2]) {
+    slide[0] = w->plates[k].slide[0];
+    slide[1] = w->plates[k].slide[1];
 }
 
 sph_plate_mode sph_plate_mode_of(const sph_world *w, int k) { return w->plates[k].mode; }

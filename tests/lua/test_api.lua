@@ -70,6 +70,56 @@ T.case("fill and plate", function()
   T.check(st.fluid == 100 and st.particles > 100, "stats counts particles")
 end)
 
+T.case("plate slide and set_velocity", function()
+  local dx = 0.1
+  local w = sph.world{ dx = dx, periodic = { x = { 0, 1 } }, threads = 1 }
+  w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
+  T.checkerror("slide", "plate with a slide that is not a table", w.plate, w, { rect = { 0, -0.3, 1, 0 }, slide = 1 })
+  T.checkerror("slide", "plate with a short slide", w.plate, w, { rect = { 0, -0.3, 1, 0 }, slide = { 1 } })
+  T.checkerror("slide", "plate with a non-finite slide", w.plate, w, { rect = { 0, -0.3, 1, 0 }, slide = { 0 / 0, 0 } })
+  local bottom = w:plate{ rect = { 0, -0.3, 1, 0 } }
+  local lid = w:plate{ rect = { 0, 1, 1, 1.3 }, slide = { 0.5, 0 } }
+  local sx, sy = lid:slide()
+  T.check(sx == 0.5 and sy == 0, "plate:slide() reads the slide given to plate{}", sx .. ", " .. sy)
+  T.check(select(1, bottom:slide()) == 0, "a plate slides at 0 by default")
+  T.checkerror("number expected", "slide with a string", lid.slide, lid, "fast", 0)
+  T.checkerror("finite", "slide with an infinite component", lid.slide, lid, 1 / 0, 0)
+  T.check(lid:slide(1, 0) == lid, "plate:slide(ux, uy) returns the plate")
+  T.check(lid.mode == "fixed" and lid.axis == nil, "a sliding plate stays a fixed plate")
+  local n = #w:field("x")
+  T.checkerror("one per fluid particle", "set_velocity with the wrong length", w.set_velocity, w, { 1 })
+  local bad = {}
+  for i = 1, n do bad[i] = 0 end
+  bad[3] = "x"
+  T.checkerror("number expected", "set_velocity with a string", w.set_velocity, w, bad)
+  bad[3] = 0 / 0
+  T.checkerror("not finite", "set_velocity with a NaN", w.set_velocity, w, nil, bad)
+  local us = {}
+  for i = 1, n do us[i] = 0.01 * i end
+  w:set_velocity(us)
+  local back, vs = w:field("u"), w:field("v")
+  T.check(back[7] == us[7] and vs[7] == 0, "set_velocity sets u in field order and keeps v")
+  w:set_velocity(nil, us)
+  back, vs = w:field("u"), w:field("v")
+  T.check(back[7] == us[7] and vs[9] == us[9], "set_velocity(nil, vs) sets v only")
+  local zero = {}
+  for i = 1, n do zero[i] = 0 end
+  w:set_velocity(zero, zero)
+  for _ = 1, 20 do w:step(2e-3) end
+  local ys, u = w:field("y"), w:field("u")
+  local top, low = 0, 0
+  for i = 1, #ys do
+    if ys[i] > 0.9 then top = math.max(top, u[i]) end
+    if ys[i] < 0.1 then low = math.max(low, math.abs(u[i])) end
+  end
+  local r = lid.rect
+  T.check(r[1] == 0 and r[2] == 1 and r[3] == 1 and r[4] == 1.3, "a sliding plate's particles stay in place")
+  -- the row under the lid follows it: after 0.04 (= 4 dx^2 / nu) it moves at over a
+  -- third of the lid speed, the row on the still bottom plate at under a tenth of that
+  T.check(top > 0.33 and low < 0.1 * top, "the fluid under a sliding lid follows it",
+    string.format("top row %.3f, bottom row %.3f", top, low))
+end)
+
 T.case("laws", function()
   local w = sph.world{ dx = 0.1 }
   w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
