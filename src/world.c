@@ -270,7 +270,7 @@ double sph_world_next_dt(sph_world *w) {
  * sheet's edge. So a particle that is not in the bulk (div r < 1.85) is also on the surface
  * when nothing lies in front of it (Marrone et al. 2010, simplified): no particle, fluid,
  * wall or image, within 2 dx inside the 45-degree cone around its outward normal
- * n = -sum_j V_j grad_i W_ij / |...|. */
+ * n = -sum_j V_j grad_i W_ij / |...|. surface = 0 turns both off (a closed domain). */
 static int cone_empty(const sph_world *w, int i) {
     double nx = 0.0, ny = 0.0;
     for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
@@ -301,7 +301,8 @@ static void mark_surface(sph_world *w) {
     for (int i = 0; i < n; i++) {
         double lim = w->surf[i] ? off : on;
         unsigned char s = 0;
-        if (w->kind[i] == SPH_FLUID) s = w->divr[i] < lim || (w->divr[i] < bulk && cone_empty(w, i));
+        if (w->kind[i] == SPH_FLUID && on > 0)
+            s = w->divr[i] < lim || (w->divr[i] < bulk && cone_empty(w, i));
         w->surf[i] = s;
         ns += s;
     }
