@@ -108,6 +108,8 @@ struct sph_world {
     /* implicit viscous system (one per velocity component, same structure) */
     sph_csr V;
     double *vb, *vsol;         /* right-hand side and solution, per fluid unknown   */
+    double *vval, *vdiag, *vrhs; /* the v component's values, diagonal and rhs      */
+    int vval_cap;
     int *vrow_of;              /* unknown -> particle                               */
     int vrows_cap;
 

@@ -249,7 +249,7 @@ int sph_neighbours_build(sph_world *w) {
         w->nb_cap = cap;
     }
 
-    double kc = -5.0 * 7.0 / (478.0 * SPH_PI * h * h * h); /* as in sph_kernel_deriv */
+    double kc = -5.0 * 7.0 / (478.0 * SPH_PI * h * h * h), hinv = 1.0 / h; /* as in sph_kernel_deriv */
     int cap = w->cand_cap;
 #pragma omp parallel num_threads(threads)
     {
@@ -298,15 +298,17 @@ int sph_neighbours_build(sph_world *w) {
 #pragma omp simd reduction(+ : divr, mxx, mxy, myy)
             for (int q = 0; q < m; q++) {
                 double dx = cdx[q], dy = cdy[q], r2 = cr2[q];
-                double r = sqrt(r2), sq = r / h;
+                double r = sqrt(r2), sq = r * hinv;
                 double dw = kc * (sph_kernel_pos4(3.0 - sq) - 6.0 * sph_kernel_pos4(2.0 - sq) +
                                   15.0 * sph_kernel_pos4(1.0 - sq));
-                double g = r > 0.0 ? dw / (r > 0.0 ? r : 1.0) : 0.0;
+                /* one division for g = dW/dr / r and F = r dW/dr / (r^2 + eps^2) */
+                double re = r2 + eps2, inv = 1.0 / (r > 0.0 ? r * re : 1.0);
+                double g = r > 0.0 ? dw * re * inv : 0.0;
                 int j = cj[q];
                 nj[q] = j;
                 ngx[q] = g * dx;
                 ngy[q] = g * dy;
-                nf_[q] = r * dw / (r2 + eps2);
+                nf_[q] = dw * r2 * inv;
                 double v = vol[j];
                 divr -= v * r * dw;
                 mxx -= v * g * dx * dx;

@@ -139,6 +139,7 @@ static int reserve_visc(sph_world *w, int nrows) {
     if (nrows <= w->vrows_cap && w->vb) return 0;
     int cap = nrows + nrows / 4 + 64;
     if (sph_grow((void **)&w->vb, sizeof(double), cap) || sph_grow((void **)&w->vsol, sizeof(double), cap) ||
+        sph_grow((void **)&w->vdiag, sizeof(double), cap) || sph_grow((void **)&w->vrhs, sizeof(double), cap) ||
         sph_grow((void **)&w->vrow_of, sizeof(int), cap))
         return sph_world_fail(w, "out of memory (%d viscous unknowns)", nrows);
     w->vrows_cap = cap;
@@ -146,42 +147,67 @@ static int reserve_visc(sph_world *w, int nrows) {
 }
 
 /* Values and right-hand side of component comp (0: u, 1: v); the structure is in w->V. */
+/* Both components have the same coefficients; they differ only by the image signs of
+ * ghosts (gsx, gsy), the wall velocity and the gravity. Component 0 computes every
+ * coefficient once, keeping component 1's values, diagonal and right-hand side (vval,
+ * vdiag, vrhs) for its turn, which is then a copy. */
 static void visc_assemble(sph_world *w, double dt, int comp) {
     sph_csr *A = &w->V;
     int nrows = A->n;
-    double g = w->par.gravity[comp];
+    if (comp == 1) {
+        int nnz = A->start[nrows];
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+        for (int e = 0; e < nnz; e++) A->val[e] = w->vval[e];
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+        for (int r = 0; r < nrows; r++) {
+            A->diag[r] = w->vdiag[r];
+            w->vb[r] = w->vrhs[r];
+            w->vsol[r] = w->v[w->vrow_of[r]];
+        }
+        sph_lap(w, SPH_PHASE_VISC_ASSEMBLY);
+        return;
+    }
+    double gx = w->par.gravity[0], gy = w->par.gravity[1];
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int r = 0; r < nrows; r++) {
         int i = w->vrow_of[r], e = A->start[r] + 1;
         double mi = w->m[i];
-        double diag = 1.0, rhs = (comp ? w->v[i] : w->u[i]) + dt * g;
+        double du = 1.0, dv = 1.0, ru = w->u[i] + dt * gx, rv = w->v[i] + dt * gy;
         int k0 = w->nb_start[i], km = w->nb_mid[i], k1 = w->nb_start[i + 1];
         double ei = w->eta[i], dr = dt / w->rho[i];
-        const signed char *gs = comp ? w->gsy : w->gsx;
         for (int k = k0; k < km; k++) { /* fluid: c = dt V_j (eta_i + eta_j) F_ij / rho_i */
             int j = w->nb_j[k], s = w->src[j];
             double c = dr * (w->vol[j] * (ei + w->eta[j]) * w->nb_f[k]);
-            double sg = gs[j];
-            diag -= c;
-            if (s == i) {
-                diag += c * sg; /* own image: c (u_i - sg u_i) */
+            double sx = w->gsx[j], sy = w->gsy[j];
+            du -= c;
+            dv -= c;
+            if (s == i) { /* own image: c (u_i - sg u_i) */
+                du += c * sx;
+                dv += c * sy;
             } else {
                 A->col[e] = w->row[s];
-                A->val[e] = mi * c * sg;
+                A->val[e] = mi * c * sx;
+                w->vval[e] = mi * c * sy;
                 e++;
             }
         }
         for (int k = km; k < k1; k++) { /* walls */
             int j = w->nb_j[k];
             double wx, wy, c = dt * wall_coeff(w, i, j, k, &wx, &wy);
-            diag -= c;
-            rhs -= c * (comp ? wy : wx);
+            du -= c;
+            dv -= c;
+            ru -= c * wx;
+            rv -= c * wy;
         }
-        A->col[A->start[r]] = r;
-        A->val[A->start[r]] = mi * diag;
-        A->diag[r] = mi * diag;
-        w->vb[r] = mi * rhs;
-        w->vsol[r] = comp ? w->v[i] : w->u[i];
+        int d = A->start[r];
+        A->col[d] = r;
+        A->val[d] = mi * du;
+        A->diag[r] = mi * du;
+        w->vval[d] = mi * dv;
+        w->vdiag[r] = mi * dv;
+        w->vb[r] = mi * ru;
+        w->vrhs[r] = mi * rv;
+        w->vsol[r] = w->u[i];
     }
     sph_lap(w, SPH_PHASE_VISC_ASSEMBLY);
 }
@@ -204,6 +230,12 @@ int sph_viscous_implicit(sph_world *w, double dt) {
         A->start[r + 1] = c;
     }
     for (int r = 0; r < nrows; r++) A->start[r + 1] += A->start[r];
+    if (A->start[nrows] > w->vval_cap) { /* component 1's values (visc_assemble) */
+        int cap = A->start[nrows] + A->start[nrows] / 4 + 64;
+        if (sph_grow((void **)&w->vval, sizeof(double), cap))
+            return sph_world_fail(w, "out of memory (viscous matrix)");
+        w->vval_cap = cap;
+    }
     if (sph_csr_reserve(A, nrows, A->start[nrows]) || sph_solver_reserve(&w->solver, nrows))
         return sph_world_fail(w, "out of memory (viscous matrix)");
 

@@ -103,7 +103,7 @@ void sph_world_free(sph_world *w) {
     int **ip[] = PARTICLE_INTS(w);
     for (size_t k = 0; k < sizeof ip / sizeof *ip; k++) free(*ip[k]);
     double **o[] = {&w->nb_gx, &w->nb_gy, &w->nb_f, &w->b, &w->sol, &w->bk[0], &w->bk[1], &w->bk[2],
-                    &w->bk[3], &w->solk[0], &w->solk[1], &w->solk[2], &w->solk[3], &w->vb, &w->vsol};
+                    &w->bk[3], &w->solk[0], &w->solk[1], &w->solk[2], &w->solk[3], &w->vb, &w->vsol, &w->vval, &w->vdiag, &w->vrhs};
     for (size_t k = 0; k < sizeof o / sizeof *o; k++) free(*o[k]);
     int **oi[] = {&w->cell_start, &w->cell_items, &w->nb_start, &w->nb_j, &w->row_of, &w->vrow_of};
     for (size_t k = 0; k < sizeof oi / sizeof *oi; k++) free(*oi[k]);
