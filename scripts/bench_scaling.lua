@@ -82,6 +82,26 @@ local function one_run(r, nthreads, steps)
   return res
 end
 
+-- the table: printed row by row as the rungs finish (a long run shows its progress)
+local head = string.format("%-7s %9s %3s %10s %7s %7s %6s", "dx", "particles", "thr", "ns/pt-step",
+  "p-it/st", "v-it/st", "spread")
+for _, p in ipairs(PHASES) do head = head .. string.format(" %6s", SHORT[p]) end
+head = head .. string.format(" %7s %7s", "x step", "x sweep")
+print(head)
+io.stdout:flush()
+local one = {} -- the 1-thread row of each rung, for the speed-ups
+local function print_row(row)
+  local line = string.format("1/%-5d %9d %3d %10.0f %7.1f %7.1f %5.0f%%", row.k, row.particles, row.threads,
+    row.ns, row.piter, row.viter, 100 * row.spread)
+  for _, p in ipairs(PHASES) do line = line .. string.format(" %5.1f%%", 100 * row.phases[p] / row.step) end
+  local b = one[row.k]
+  if row.threads ~= 1 and b then
+    line = line .. string.format(" %7.2f %7.2f", b.step / row.step, b.sweeps / row.sweeps)
+  end
+  print(line)
+  io.stdout:flush()
+end
+
 local rows = {}
 for _, r in ipairs(rungs) do
   local runs = math.floor(o.runs or (r.particles > 3e4 and 1 or 3))
@@ -103,31 +123,15 @@ for _, r in ipairs(rungs) do
     local sweeps = step - pick.phases.viscous_solve - pick.phases.pressure_solve
     local lo, hi = math.huge, 0
     for _, x in ipairs(ns) do lo, hi = math.min(lo, x), math.max(hi, x) end
-    rows[#rows + 1] = { k = r.k, dx = r.dx, particles = r.particles, threads = t, runs = runs, steps = steps,
-                        ns = med, spread = (hi - lo) / med, piter = pick.piter, viter = pick.viter,
-                        phases = pick.phases, step = step, sweeps = sweeps, neighbours = pick.neighbours }
+    local row = { k = r.k, dx = r.dx, particles = r.particles, threads = t, runs = runs, steps = steps,
+                  ns = med, spread = (hi - lo) / med, piter = pick.piter, viter = pick.viter,
+                  phases = pick.phases, step = step, sweeps = sweeps, neighbours = pick.neighbours }
+    rows[#rows + 1] = row
+    if t == 1 then one[r.k] = row end
+    print_row(row)
   end
 end
 
--- speed-ups of t threads over 1 thread, per rung
-local one = {}
-for _, row in ipairs(rows) do if row.threads == 1 then one[row.k] = row end end
-
-local head = string.format("%-7s %9s %3s %10s %7s %7s %6s", "dx", "particles", "thr", "ns/pt-step",
-  "p-it/st", "v-it/st", "spread")
-for _, p in ipairs(PHASES) do head = head .. string.format(" %6s", SHORT[p]) end
-head = head .. string.format(" %7s %7s", "x step", "x sweep")
-print(head)
-for _, row in ipairs(rows) do
-  local line = string.format("1/%-5d %9d %3d %10.0f %7.1f %7.1f %5.0f%%", row.k, row.particles, row.threads,
-    row.ns, row.piter, row.viter, 100 * row.spread)
-  for _, p in ipairs(PHASES) do line = line .. string.format(" %5.1f%%", 100 * row.phases[p] / row.step) end
-  local b = one[row.k]
-  if row.threads ~= 1 and b then
-    line = line .. string.format(" %7.2f %7.2f", b.step / row.step, b.sweeps / row.sweeps)
-  end
-  print(line)
-end
 print("phases in % of the step: sort (+ ghosts), nbrs (neighbour list, kernel gradients), rheo (shear rate,")
 print("viscosity), v-asm / v-sol (implicit viscous assembly / solve), p-asm / p-sol (pressure assembly /")
 print("pressure and density-correction solves), corr (projection, continuity, density correction), shift,")
