@@ -66,25 +66,32 @@ static int make_grid(sph_world *w) {
     return 0;
 }
 
-/* Permute every persistent per-particle array by perm (new i <- old perm[i]). */
+/* Permute every persistent per-particle array by perm (new i <- old perm[i]): one parallel
+ * region (a region costs a team set-up), one array after the other through the scratch. */
 static void permute(sph_world *w, const int *perm) {
     int n = w->n;
     double *dscratch = w->xs;
-    double **darr[] = {&w->x, &w->y, &w->u, &w->v, &w->ax, &w->ay, &w->p, &w->rho, &w->m,
-                       &w->eta, &w->gd, &w->phi, &w->psens[0], &w->psens[1], &w->psens[2], &w->psens[3]};
-    for (size_t a = 0; a < sizeof darr / sizeof *darr; a++) {
-        double *arr = *darr[a];
-#pragma omp parallel for schedule(static) num_threads(w->threads)
-        for (int i = 0; i < n; i++) dscratch[i] = arr[perm[i]];
-        memcpy(arr, dscratch, sizeof(double) * (size_t)n);
-    }
+    double *darr[] = {w->x, w->y, w->u, w->v, w->ax, w->ay, w->p, w->rho, w->m,
+                      w->eta, w->gd, w->phi, w->psens[0], w->psens[1], w->psens[2], w->psens[3]};
     int *iscratch = w->iscratch;
-    int **iarr[] = {&w->kind, &w->mat, &w->id};
-    for (size_t a = 0; a < sizeof iarr / sizeof *iarr; a++) {
-        int *arr = *iarr[a];
-#pragma omp parallel for schedule(static) num_threads(w->threads)
-        for (int i = 0; i < n; i++) iscratch[i] = arr[perm[i]];
-        memcpy(arr, iscratch, sizeof(int) * (size_t)n);
+    int *iarr[] = {w->kind, w->mat, w->id};
+    int nd = (int)(sizeof darr / sizeof *darr), ni = (int)(sizeof iarr / sizeof *iarr);
+#pragma omp parallel num_threads(w->threads)
+    {
+        for (int a = 0; a < nd; a++) {
+            double *arr = darr[a];
+#pragma omp for schedule(static)
+            for (int i = 0; i < n; i++) dscratch[i] = arr[perm[i]];
+#pragma omp for schedule(static)
+            for (int i = 0; i < n; i++) arr[i] = dscratch[i];
+        }
+        for (int a = 0; a < ni; a++) {
+            int *arr = iarr[a];
+#pragma omp for schedule(static)
+            for (int i = 0; i < n; i++) iscratch[i] = arr[perm[i]];
+#pragma omp for schedule(static)
+            for (int i = 0; i < n; i++) arr[i] = iscratch[i];
+        }
     }
     unsigned char *c = (unsigned char *)w->iscratch;
     for (int i = 0; i < n; i++) c[i] = w->surf[perm[i]];
