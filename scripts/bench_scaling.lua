@@ -91,7 +91,7 @@ print(head)
 io.stdout:flush()
 local one = {} -- the 1-thread row of each rung, for the speed-ups
 local function print_row(row)
-  local line = string.format("1/%-5d %9d %3d %10.0f %7.1f %7.1f %5.0f%%", row.k, row.particles, row.threads,
+  local line = string.format("1/%-5.5g %9d %3d %10.0f %7.1f %7.1f %5.0f%%", row.k, row.particles, row.threads,
     row.ns, row.piter, row.viter, 100 * row.spread)
   for _, p in ipairs(PHASES) do line = line .. string.format(" %5.1f%%", 100 * row.phases[p] / row.step) end
   local b = one[row.k]
