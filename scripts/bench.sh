@@ -6,7 +6,8 @@
 #   - the renderer (tests/bench/bench_render.c): 100 000 particles to PNG, median of 5;
 #   - the scaling of the step (scripts/bench_scaling.lua): the paper's squeeze (Bn = 5,
 #     M = 800, Re = 1, V = -1) from 10^3 particles up to BENCH_MAX_N (default 120000; the
-#     10^6 row is opt-in, BENCH_MAX_N=1000000, about an hour with the Jacobi-PCG solvers),
+#     10^6 row is opt-in, BENCH_MAX_N=1000000: not run yet, estimated an hour or more with
+#     the Jacobi-PCG solvers (thousands of iterations per solve)),
 #     1 and 2 threads: ns per particle-step, solver iterations per step and the share of
 #     each phase of the step; writes out/bench/scaling.csv and scaling.png.
 # Prints the tables and writes them to out/bench/bench.txt. About 20 s on an idle 2-core

@@ -9,7 +9,7 @@
 --   build/sph scripts/bench_scaling.lua [max_n=120000] [runs=3] [steps=..] [warmup=3]
 --                                       [threads=1,2] [dx=0.0025] [out=out/bench]
 -- max_n caps the particle count (fluid + wall) of the ladder (default 1.2e5; the 10^6 row is
--- opt-in: max_n=1e6, about an hour with the Jacobi-preconditioned solvers); dx= runs one
+-- opt-in: max_n=1e6, not run yet, an hour or more with the Jacobi-preconditioned solvers); dx= runs one
 -- resolution only. Runs are interleaved (run 1 of every thread count, then run 2, ...) and
 -- each row is the median over runs; above 3e4 particles one run (the steps are long).
 -- Columns: particles (fluid + wall, ghosts not counted), ns per particle-step (the whole
