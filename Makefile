@@ -6,7 +6,7 @@ PKG_LIBS   := $(shell pkg-config --libs $(PKGS))
 WARN    := -Wall -Wextra -Wshadow -Wstrict-prototypes -Wmissing-prototypes \
            -Wmissing-declarations -Wundef -Wpointer-arith -Wwrite-strings -Wno-unknown-pragmas
 OPT     ?= -O2 -march=x86-64-v2
-CFLAGS  += -std=c11 -D_POSIX_C_SOURCE=200809L $(OPT) -g -fopenmp -fPIC $(WARN) $(PKG_CFLAGS) \
+CFLAGS  += -std=c11 -D_POSIX_C_SOURCE=200809L $(OPT) -g -fopenmp -fno-math-errno -fno-trapping-math -fPIC $(WARN) $(PKG_CFLAGS) \
            -DSPH_LUA_DIR='"$(abspath lua)"'
 LDLIBS  += $(PKG_LIBS) -lm -fopenmp
 ifeq ($(SANITIZE),1)

@@ -3,9 +3,16 @@
 #   - the headline Bingham squeeze (scripts/bench_squeeze.lua) at dx = 1/40 and 1/80 with
 #     1 and 2 threads: median over BENCH_RUNS runs (default 3) of steps/s and microseconds
 #     per particle-step, pressure-solver iterations per step;
-#   - the renderer (tests/bench/bench_render.c): 100 000 particles to PNG, median of 5.
+#   - the renderer (tests/bench/bench_render.c): 100 000 particles to PNG, median of 5;
+#   - the scaling of the step (scripts/bench_scaling.lua): the paper's squeeze (Bn = 5,
+#     M = 800, Re = 1, V = -1) from 10^3 particles up to BENCH_MAX_N (default 120000; the
+#     10^6 row is opt-in, BENCH_MAX_N=1000000: not run yet, estimated an hour or more with
+#     the Jacobi-PCG solvers (thousands of iterations per solve)),
+#     1 and 2 threads: ns per particle-step, solver iterations per step and the share of
+#     each phase of the step; writes out/bench/scaling.csv and scaling.png.
 # Prints the tables and writes them to out/bench/bench.txt. About 20 s on an idle 2-core
-# machine; threads = 2 slows down many times over when another program holds a core (every
+# machine for the first two, a few minutes for the scaling up to 1.2e5 particles;
+# threads = 2 slows down many times over when another program holds a core (every
 # step has hundreds of OpenMP fork/joins, several per pressure-solver iteration), so the
 # CPU time other programs took during the bench is recorded with the figures.
 #   sh scripts/bench.sh [BUILD_DIR]       BENCH_RUNS=5 sh scripts/bench.sh
@@ -14,6 +21,10 @@ B=${1:-build}
 top=$(cd "$(dirname "$0")/.." && pwd)
 cd "$top"
 runs=${BENCH_RUNS:-3}
+max_n=${BENCH_MAX_N:-120000}
+case $max_n in
+    '' | *[!0-9]* | 0) echo "bench.sh: BENCH_MAX_N must be a positive integer, got '$max_n'" >&2; exit 2 ;;
+esac
 case $runs in
     '' | *[!0-9]* | 0) echo "bench.sh: BENCH_RUNS must be a positive integer, got '$runs'" >&2; exit 2 ;;
 esac
@@ -66,6 +77,8 @@ section header
 section "$B/sph" scripts/bench_squeeze.lua runs="$runs"
 section printf '\nrenderer, 100 000 particles (tests/bench/bench_render.c):\n'
 section "$B/bench_render" "$out"
+section printf '\nscaling of the step: squeeze Bn = 5, M = 800, Re = 1, V = -1, fixed dt = dx/40 (scripts/bench_scaling.lua):\n'
+section "$B/sph" scripts/bench_scaling.lua max_n="$max_n" out="$out"
 busy1=$(busy); up1=$(uptime_s); own_cpu; own1=$own
 others=$(awk -v b0="$busy0" -v b1="$busy1" -v o0="$own0" -v o1="$own1" -v u0="$up0" -v u1="$up1" \
     'BEGIN { x = ((b1 - b0) - (o1 - o0)) / (u1 - u0); printf "%.2f", x < 0 ? 0 : x }')

@@ -67,11 +67,16 @@ struct sph_world {
     double *lxx, *lxy, *lyy;   /* kernel-gradient renormalisation (Bonet & Lok 1999) */
     double *gux, *guy, *gvx, *gvy; /* velocity gradient (du/dx, du/dy, dv/dx, dv/dy)  */
     double *xs, *ys;           /* scratch (reordering, shifting displacements)       */
+    double *vol;               /* m / rho, set by the neighbour build (rho of then)  */
+    double *sa, *sb;           /* scratch per particle for the sweeps (f / rho^2,
+                                  the source velocity of the pressure system)        */
+    double *cx, *cy;           /* positions in cell order: cx[k] = x[cell_items[k]]  */
     int *kind, *mat, *id;      /* SPH_FLUID or plate index; material; stable id     */
     int *src;                  /* ghosts: the real particle they image; reals: self */
     signed char *gsx, *gsy;    /* ghosts: sign applied to u, v (mirror: -1)         */
     unsigned char *surf;       /* fluid on the free surface (p = 0)                 */
     unsigned char *active;     /* wall particle in the pressure system              */
+    unsigned char *cellfl;     /* in cell order: the item is fluid (real or ghost)   */
     int *row;                  /* unknown index in the pressure system or -1        */
     double *psens[SPH_MAX_LOADED]; /* d p / d V of each loaded plate (warm starts)   */
     int *perm, *iscratch;
@@ -91,7 +96,11 @@ struct sph_world {
     double *nb_f;              /* r_ij . grad_i W_ij / (r_ij^2 + eps^2)             */
     long nb_cap;
     int *nb_count;
-
+    int *nb_mid;               /* row i: fluid (and fluid ghost) neighbours in
+                                  [nb_start[i], nb_mid[i]), walls in [nb_mid[i], nb_start[i+1]) */
+    double *cand;              /* per-thread candidate scratch of the build: 3 x (cand_cap + 1) */
+    int *cand_j;               /* per-thread: cand_cap + 1                          */
+    int cand_cap, cand_threads;
     sph_material mats[SPH_MAX_MATERIALS];
     int nmats;
     sph_plate plates[SPH_MAX_PLATES];
@@ -100,6 +109,8 @@ struct sph_world {
     /* implicit viscous system (one per velocity component, same structure) */
     sph_csr V;
     double *vb, *vsol;         /* right-hand side and solution, per fluid unknown   */
+    double *vval, *vdiag, *vrhs; /* the v component's values, diagonal and rhs      */
+    int vval_cap;
     int *vrow_of;              /* unknown -> particle                               */
     int vrows_cap;
 
@@ -114,6 +125,8 @@ struct sph_world {
     int *row_of;               /* row -> particle                                   */
 
     double t, dt, wall_time;
+    double phase_time[SPH_PHASES]; /* seconds per phase of the step (sph_lap)          */
+    double lap;                /* omp_get_wtime() at the last sph_lap               */
     long steps;
     sph_stats st;
     int prepared;
@@ -121,6 +134,8 @@ struct sph_world {
 };
 
 /* world.c */
+/* Phase timer: the wall time since the last lap goes to phase `phase`. */
+void sph_lap(sph_world *w, int phase);
 int sph_world_fail(sph_world *w, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))

@@ -449,6 +449,11 @@ static int w_stats(lua_State *L) {
     SETN("t", sph_world_time(lw->w));
     SETN("dt", sph_world_dt(lw->w));
     SETI("steps", sph_world_steps(lw->w));
+    /* phases = {sort = seconds, ...}: cumulative wall time of each phase of the step */
+    const char *const *pn = sph_phase_names();
+    lua_createtable(L, 0, SPH_PHASES);
+    for (int k = 0; k < SPH_PHASES && pn[k]; k++) SETN(pn[k], s.phase_time[k]);
+    lua_setfield(L, -2, "phases");
 #undef SETI
 #undef SETN
     return 1;

@@ -7,6 +7,7 @@
 #include "kernel.h"
 
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -65,23 +66,32 @@ static int make_grid(sph_world *w) {
     return 0;
 }
 
-/* Permute every persistent per-particle array by perm (new i <- old perm[i]). */
+/* Permute every persistent per-particle array by perm (new i <- old perm[i]): one parallel
+ * region (a region costs a team set-up), one array after the other through the scratch. */
 static void permute(sph_world *w, const int *perm) {
     int n = w->n;
     double *dscratch = w->xs;
-    double **darr[] = {&w->x, &w->y, &w->u, &w->v, &w->ax, &w->ay, &w->p, &w->rho, &w->m,
-                       &w->eta, &w->gd, &w->phi, &w->psens[0], &w->psens[1], &w->psens[2], &w->psens[3]};
-    for (size_t a = 0; a < sizeof darr / sizeof *darr; a++) {
-        double *arr = *darr[a];
-        for (int i = 0; i < n; i++) dscratch[i] = arr[perm[i]];
-        memcpy(arr, dscratch, sizeof(double) * (size_t)n);
-    }
+    double *darr[] = {w->x, w->y, w->u, w->v, w->ax, w->ay, w->p, w->rho, w->m,
+                      w->eta, w->gd, w->phi, w->psens[0], w->psens[1], w->psens[2], w->psens[3]};
     int *iscratch = w->iscratch;
-    int **iarr[] = {&w->kind, &w->mat, &w->id};
-    for (size_t a = 0; a < sizeof iarr / sizeof *iarr; a++) {
-        int *arr = *iarr[a];
-        for (int i = 0; i < n; i++) iscratch[i] = arr[perm[i]];
-        memcpy(arr, iscratch, sizeof(int) * (size_t)n);
+    int *iarr[] = {w->kind, w->mat, w->id};
+    int nd = (int)(sizeof darr / sizeof *darr), ni = (int)(sizeof iarr / sizeof *iarr);
+#pragma omp parallel num_threads(w->threads)
+    {
+        for (int a = 0; a < nd; a++) {
+            double *arr = darr[a];
+#pragma omp for schedule(static)
+            for (int i = 0; i < n; i++) dscratch[i] = arr[perm[i]];
+#pragma omp for schedule(static)
+            for (int i = 0; i < n; i++) arr[i] = dscratch[i];
+        }
+        for (int a = 0; a < ni; a++) {
+            int *arr = iarr[a];
+#pragma omp for schedule(static)
+            for (int i = 0; i < n; i++) iscratch[i] = arr[perm[i]];
+#pragma omp for schedule(static)
+            for (int i = 0; i < n; i++) arr[i] = iscratch[i];
+        }
     }
     unsigned char *c = (unsigned char *)w->iscratch;
     for (int i = 0; i < n; i++) c[i] = w->surf[perm[i]];
@@ -93,12 +103,11 @@ int sph_neighbours_sort(sph_world *w) {
     int n = w->n, ncell = w->ncx * w->ncy;
     int *cs = w->cell_start;
     memset(cs, 0, sizeof(int) * (size_t)(ncell + 1));
-    for (int i = 0; i < n; i++) {
-        int c = cell_coord(w->y[i], w->gy0, w->cell, w->ncy) * w->ncx +
-                cell_coord(w->x[i], w->gx0, w->cell, w->ncx);
-        w->cell_of[i] = c;
-        cs[c + 1]++;
-    }
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+    for (int i = 0; i < n; i++)
+        w->cell_of[i] = cell_coord(w->y[i], w->gy0, w->cell, w->ncy) * w->ncx +
+                        cell_coord(w->x[i], w->gx0, w->cell, w->ncx);
+    for (int i = 0; i < n; i++) cs[w->cell_of[i] + 1]++;
     for (int c = 0; c < ncell; c++) cs[c + 1] += cs[c];
     for (int i = 0; i < n; i++) w->perm[cs[w->cell_of[i]]++] = i;
     permute(w, w->perm);
@@ -111,12 +120,11 @@ static int bin_all(sph_world *w) {
     int *cs = w->cell_start;
     if (ensure_int(&w->cell_items, &w->cell_items_cap, nt)) return sph_world_fail(w, "out of memory");
     memset(cs, 0, sizeof(int) * (size_t)(ncell + 1));
-    for (int i = 0; i < nt; i++) {
-        int c = cell_coord(w->y[i], w->gy0, w->cell, w->ncy) * w->ncx +
-                cell_coord(w->x[i], w->gx0, w->cell, w->ncx);
-        w->cell_of[i] = c;
-        cs[c + 1]++;
-    }
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+    for (int i = 0; i < nt; i++)
+        w->cell_of[i] = cell_coord(w->y[i], w->gy0, w->cell, w->ncy) * w->ncx +
+                        cell_coord(w->x[i], w->gx0, w->cell, w->ncx);
+    for (int i = 0; i < nt; i++) cs[w->cell_of[i] + 1]++;
     for (int c = 0; c < ncell; c++) cs[c + 1] += cs[c];
     for (int i = 0; i < nt; i++) w->cell_items[cs[w->cell_of[i]]++] = i;
     for (int c = ncell; c > 0; c--) cs[c] = cs[c - 1];
@@ -149,39 +157,85 @@ static void mark_rows(sph_world *w) {
     }
 }
 
-/* Visit the candidate neighbours of particle i: calls body with j for every particle in
- * the 3 x 3 block of cells. */
-#define FOR_CANDIDATES(w, i, j, ...)                                                      \
-    do {                                                                                  \
-        int c_ = (w)->cell_of[i], cx_ = c_ % (w)->ncx, cy_ = c_ / (w)->ncx;               \
-        int ya_ = cy_ > 0 ? cy_ - 1 : 0, yb_ = cy_ + 1 < (w)->ncy ? cy_ + 1 : cy_;        \
-        int xa_ = cx_ > 0 ? cx_ - 1 : 0, xb_ = cx_ + 1 < (w)->ncx ? cx_ + 1 : cx_;        \
-        for (int yy_ = ya_; yy_ <= yb_; yy_++) {                                          \
-            int k0_ = (w)->cell_start[yy_ * (w)->ncx + xa_];                              \
-            int k1_ = (w)->cell_start[yy_ * (w)->ncx + xb_ + 1];                          \
-            for (int k_ = k0_; k_ < k1_; k_++) {                                          \
-                int j = (w)->cell_items[k_];                                              \
-                __VA_ARGS__;                                                              \
-            }                                                                             \
-        }                                                                                 \
-    } while (0)
+/* The candidates of particle i are the items of the 3 x 3 cells around its cell: three
+ * runs of consecutive items (one per row of cells), [k0[r], k1[r]). */
+static inline int candidate_runs(const sph_world *w, int i, int k0[3], int k1[3]) {
+    int c = w->cell_of[i], cx = c % w->ncx, cy = c / w->ncx;
+    int ya = cy > 0 ? cy - 1 : 0, yb = cy + 1 < w->ncy ? cy + 1 : cy;
+    int xa = cx > 0 ? cx - 1 : 0, xb = cx + 1 < w->ncx ? cx + 1 : cx;
+    int nr = 0;
+    for (int yy = ya; yy <= yb; yy++, nr++) {
+        k0[nr] = w->cell_start[yy * w->ncx + xa];
+        k1[nr] = w->cell_start[yy * w->ncx + xb + 1];
+    }
+    return nr;
+}
 
+/* Per-thread candidate scratch: room for the largest 3 x 3 block of cells. */
+static int reserve_candidates(sph_world *w) {
+    int ncx = w->ncx, ncy = w->ncy, most = 0;
+    for (int cy = 0; cy < ncy; cy++) {
+        int ya = cy > 0 ? cy - 1 : 0, yb = cy + 1 < ncy ? cy + 1 : cy;
+        for (int cx = 0; cx < ncx; cx++) {
+            int xa = cx > 0 ? cx - 1 : 0, xb = cx + 1 < ncx ? cx + 1 : cx, m = 0;
+            for (int yy = ya; yy <= yb; yy++)
+                m += w->cell_start[yy * ncx + xb + 1] - w->cell_start[yy * ncx + xa];
+            if (m > most) most = m;
+        }
+    }
+    if (most <= w->cand_cap && w->threads <= w->cand_threads) return 0;
+    int cap = most + most / 4 + 64, nt = w->threads;
+    double *c = realloc(w->cand, sizeof(double) * 3 * (size_t)(cap + 1) * (size_t)nt);
+    if (c) w->cand = c;
+    int *j = realloc(w->cand_j, sizeof(int) * (size_t)(cap + 1) * (size_t)nt);
+    if (j) w->cand_j = j;
+    if (!c || !j) return sph_world_fail(w, "out of memory (neighbour candidates)");
+    w->cand_cap = cap;
+    w->cand_threads = nt;
+    return 0;
+}
+
+/* Neighbour lists of the rows (fluid and active walls). Positions are first copied in cell
+ * order (cx, cy), so that the distance tests run over contiguous arrays (vectorised); the
+ * pairs within the support are compacted into per-thread scratch, fluid neighbours (real
+ * or ghost) first and walls after, then the kernel gradient of every pair is computed in
+ * one vectorised loop. The count pass sizes the lists (no allocation once they are large
+ * enough). */
 int sph_neighbours_build(sph_world *w) {
     if (bin_all(w)) return -1;
     mark_rows(w);
-    int n = w->n, threads = w->threads;
+    if (reserve_candidates(w)) return -1;
+    int n = w->n, nt = n + w->ng, threads = w->threads;
     double h = w->h, r2max = SPH_KERNEL_SUPPORT * SPH_KERNEL_SUPPORT * h * h, eps2 = w->eps2;
     int *cnt = w->nb_count;
+    const int *items = w->cell_items;
+    double *cx = w->cx, *cy = w->cy, *vol = w->vol;
+    unsigned char *cfl = w->cellfl;
+
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (int k = 0; k < nt; k++) {
+        int j = items[k];
+        cx[k] = w->x[j];
+        cy[k] = w->y[j];
+        cfl[k] = w->kind[j] == SPH_FLUID;
+        vol[k] = w->m[k] / w->rho[k];
+    }
 
 #pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
     for (int i = 0; i < n; i++) {
         int c = 0;
         if (w->active[i]) {
-            double xi = w->x[i], yi = w->y[i];
-            FOR_CANDIDATES(w, i, j, {
-                double dx = xi - w->x[j], dy = yi - w->y[j];
-                c += (dx * dx + dy * dy < r2max) & (j != i);
-            });
+            double xi = w->x[i], yi = w->y[i], cd = 0.0;
+            int k0[3], k1[3], nr = candidate_runs(w, i, k0, k1);
+            for (int r = 0; r < nr; r++) {
+                int a = k0[r], b = k1[r];
+#pragma omp simd reduction(+ : cd)
+                for (int k = a; k < b; k++) {
+                    double dx = xi - cx[k], dy = yi - cy[k];
+                    cd += dx * dx + dy * dy < r2max ? 1.0 : 0.0;
+                }
+            }
+            c = (int)cd - 1; /* i itself is among its candidates, at r = 0 */
         }
         cnt[i] = c;
     }
@@ -202,40 +256,84 @@ int sph_neighbours_build(sph_world *w) {
         w->nb_cap = cap;
     }
 
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
-    for (int i = 0; i < n; i++) {
-        if (!w->active[i]) continue;
-        int k = w->nb_start[i];
-        double xi = w->x[i], yi = w->y[i], divr = 0.0, mxx = 0.0, mxy = 0.0, myy = 0.0;
-        FOR_CANDIDATES(w, i, j, {
-            double dx = xi - w->x[j], dy = yi - w->y[j], r2 = dx * dx + dy * dy;
-            if (r2 < r2max && j != i) {
-                double r = sqrt(r2);
-                double dw = sph_kernel_deriv(r, h);
-                double g = r > 0.0 ? dw / r : 0.0;
-                w->nb_j[k] = j;
-                w->nb_gx[k] = g * dx;
-                w->nb_gy[k] = g * dy;
-                w->nb_f[k] = r * dw / (r2 + eps2);
-                double vol = w->m[j] / w->rho[j];
-                divr -= vol * r * dw;
-                mxx -= vol * g * dx * dx;
-                mxy -= vol * g * dx * dy;
-                myy -= vol * g * dy * dy;
-                k++;
+    double kc = -5.0 * 7.0 / (478.0 * SPH_PI * h * h * h), hinv = 1.0 / h; /* as in sph_kernel_deriv */
+    int cap = w->cand_cap;
+#pragma omp parallel num_threads(threads)
+    {
+        int t = omp_get_thread_num();
+        /* cap + 1 slots per array: the last one takes the rejected candidates */
+        int *cj = w->cand_j + (size_t)t * (cap + 1);
+        double *cdx = w->cand + (size_t)t * 3 * (cap + 1), *cdy = cdx + cap + 1, *cr2 = cdy + cap + 1;
+#pragma omp for schedule(dynamic, 256)
+        for (int i = 0; i < n; i++) {
+            if (!w->active[i]) {
+                w->nb_mid[i] = w->nb_start[i];
+                continue;
             }
-        });
-        w->divr[i] = divr;
-        /* L = M^-1, M = sum_j V_j (x_j - x_i) (x) grad_i W_ij (= I in the bulk). Where the
-         * support is too truncated for M to be trusted, L = I. */
-        double det = mxx * myy - mxy * mxy;
-        if (det > 0.25 && mxx > 0 && myy > 0) {
-            w->lxx[i] = myy / det;
-            w->lxy[i] = -mxy / det;
-            w->lyy[i] = mxx / det;
-        } else {
-            w->lxx[i] = w->lyy[i] = 1.0;
-            w->lxy[i] = 0.0;
+            double xi = w->x[i], yi = w->y[i];
+            int k0[3], k1[3], nr = candidate_runs(w, i, k0, k1);
+            /* compaction: fluid from the front, walls from the back of the scratch */
+            int nf = 0, nw = 0;
+            for (int r = 0; r < nr; r++)
+                for (int k = k0[r]; k < k1[r]; k++) {
+                    /* branch-free (a kept candidate is not predictable): every candidate
+                     * is written, a rejected one to the spare slot cap */
+                    double dx = xi - cx[k], dy = yi - cy[k], r2 = dx * dx + dy * dy;
+                    int j = items[k];
+                    int keep = (r2 < r2max) & (j != i), kf = keep & cfl[k], kw = keep & !cfl[k];
+                    int e = cap + kf * (nf - cap) + kw * (-1 - nw);
+                    nf += kf;
+                    nw += kw;
+                    cj[e] = j;
+                    cdx[e] = dx;
+                    cdy[e] = dy;
+                    cr2[e] = r2;
+                }
+            int s = w->nb_start[i];
+            w->nb_mid[i] = s + nf;
+            for (int q = 0; q < nw; q++) { /* walls after the fluid, in the order met */
+                int e = cap - 1 - q;
+                cj[nf + q] = cj[e];
+                cdx[nf + q] = cdx[e];
+                cdy[nf + q] = cdy[e];
+                cr2[nf + q] = cr2[e];
+            }
+            int m = nf + nw;
+            int *nj = w->nb_j + s;
+            double *ngx = w->nb_gx + s, *ngy = w->nb_gy + s, *nf_ = w->nb_f + s;
+            double divr = 0.0, mxx = 0.0, mxy = 0.0, myy = 0.0;
+#pragma omp simd reduction(+ : divr, mxx, mxy, myy)
+            for (int q = 0; q < m; q++) {
+                double dx = cdx[q], dy = cdy[q], r2 = cr2[q];
+                double r = sqrt(r2), sq = r * hinv;
+                double dw = kc * (sph_kernel_pos4(3.0 - sq) - 6.0 * sph_kernel_pos4(2.0 - sq) +
+                                  15.0 * sph_kernel_pos4(1.0 - sq));
+                /* one division for g = dW/dr / r and F = r dW/dr / (r^2 + eps^2) */
+                double re = r2 + eps2, inv = 1.0 / (r > 0.0 ? r * re : 1.0);
+                double g = r > 0.0 ? dw * re * inv : 0.0;
+                int j = cj[q];
+                nj[q] = j;
+                ngx[q] = g * dx;
+                ngy[q] = g * dy;
+                nf_[q] = dw * r2 * inv;
+                double v = vol[j];
+                divr -= v * r * dw;
+                mxx -= v * g * dx * dx;
+                mxy -= v * g * dx * dy;
+                myy -= v * g * dy * dy;
+            }
+            w->divr[i] = divr;
+            /* L = M^-1, M = sum_j V_j (x_j - x_i) (x) grad_i W_ij (= I in the bulk). Where the
+             * support is too truncated for M to be trusted, L = I. */
+            double det = mxx * myy - mxy * mxy;
+            if (det > 0.25 && mxx > 0 && myy > 0) {
+                w->lxx[i] = myy / det;
+                w->lxy[i] = -mxy / det;
+                w->lyy[i] = mxx / det;
+            } else {
+                w->lxx[i] = w->lyy[i] = 1.0;
+                w->lxy[i] = 0.0;
+            }
         }
     }
     return 0;

@@ -122,9 +122,9 @@ static void plate_pressure_force(const sph_world *w, const double *p, double *ou
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) continue;
         double pi = p[i] / (w->rho[i] * w->rho[i]);
-        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
+        for (int k = w->nb_mid[i]; k < w->nb_start[i + 1]; k++) { /* walls */
             int j = w->nb_j[k], pk = w->kind[j];
-            if (pk == SPH_FLUID || w->plates[pk].axis < 0) continue;
+            if (w->plates[pk].axis < 0) continue;
             double c = w->m[i] * w->m[j] * (pi + p[j] / (w->rho[j] * w->rho[j]));
             f[pk] += w->plates[pk].axis == 0 ? c * w->nb_gx[k] * w->gsx[j] : c * w->nb_gy[k] * w->gsy[j];
         }
@@ -204,14 +204,22 @@ int sph_pressure_solve(sph_world *w, double dt) {
     sph_csr *A = &w->A;
     if (sph_csr_reserve(A, nrows, 1)) return sph_world_fail(w, "out of memory");
     A->start[0] = 0;
+#pragma omp parallel for schedule(static) num_threads(threads)
     for (int r = 0; r < nrows; r++) {
         int i = w->row_of[r], c = 1;
         for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
             int s = w->src[w->nb_j[k]];
             c += s != i && w->row[s] >= 0;
         }
-        A->start[r + 1] = A->start[r] + c;
+        A->start[r + 1] = c;
     }
+    for (int r = 0; r < nrows; r++) A->start[r + 1] += A->start[r];
+
+    /* the velocity each particle has in the source term (sa, sb), once per particle */
+    int ntot = n + w->ng;
+    double *svx = w->sa, *svy = w->sb;
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (int j = 0; j < ntot; j++) src_velocity(w, j, &svx[j], &svy[j]);
     if (sph_csr_reserve(A, nrows, A->start[nrows]) || sph_solver_reserve(&w->solver, nrows))
         return sph_world_fail(w, "out of memory (pressure matrix)");
 
@@ -220,25 +228,36 @@ int sph_pressure_solve(sph_world *w, double dt) {
         int i = w->row_of[r], e = A->start[r] + 1;
         double mi = w->m[i], rhoi = w->rho[i], diag = 0.0, div = 0.0;
         double sens[SPH_MAX_LOADED] = {0};
-        double wi_x, wi_y;
-        src_velocity(w, i, &wi_x, &wi_y);
+        double wi_x = svx[i], wi_y = svy[i];
         int fl = w->kind[i] == SPH_FLUID;
         double lxx = fl ? w->lxx[i] : 1.0, lxy = fl ? w->lxy[i] : 0.0, lyy = fl ? w->lyy[i] : 1.0;
-        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
-            int j = w->nb_j[k], s = w->src[j];
-            double rs = rhoi + w->rho[j];
-            double c = mi * w->m[j] * 8.0 / (rs * rs) * (-w->nb_f[k]);
-            double wj_x, wj_y;
-            src_velocity(w, j, &wj_x, &wj_y);
-            double gx = lxx * w->nb_gx[k] + lxy * w->nb_gy[k], gy = lxy * w->nb_gx[k] + lyy * w->nb_gy[k];
-            div += w->m[j] * ((wi_x - wj_x) * gx + (wi_y - wj_y) * gy);
-            for (int q = 0; q < K; q++) {
-                double ax, ay, bx, by;
-                sens_velocity(w, i, loaded[q], &ax, &ay);
+        int k0 = w->nb_start[i], k1 = w->nb_start[i + 1];
+        const int *nj = w->nb_j;
+        const double *m = w->m, *ngx = w->nb_gx, *ngy = w->nb_gy;
+        /* the source: sum_j m_j (u*_i - u*_j) . L grad W (vectorised) */
+#pragma omp simd reduction(+ : div)
+        for (int k = k0; k < k1; k++) {
+            int j = nj[k];
+            double gx = lxx * ngx[k] + lxy * ngy[k], gy = lxy * ngx[k] + lyy * ngy[k];
+            div += m[j] * ((wi_x - svx[j]) * gx + (wi_y - svy[j]) * gy);
+        }
+        for (int q = 0; q < K; q++) { /* loaded plates: d source / d V_q */
+            double ax, ay;
+            sens_velocity(w, i, loaded[q], &ax, &ay);
+            for (int k = k0; k < k1; k++) {
+                int j = nj[k];
+                double bx, by;
                 sens_velocity(w, j, loaded[q], &bx, &by);
-                sens[q] += w->m[j] * ((ax - bx) * gx + (ay - by) * gy);
+                double gx = lxx * ngx[k] + lxy * ngy[k], gy = lxy * ngx[k] + lyy * ngy[k];
+                sens[q] += m[j] * ((ax - bx) * gx + (ay - by) * gy);
             }
+        }
+        /* the matrix row */
+        for (int k = k0; k < k1; k++) {
+            int j = nj[k], s = w->src[j];
             if (s == i) continue;
+            double rs = rhoi + w->rho[j];
+            double c = mi * m[j] * 8.0 / (rs * rs) * (-w->nb_f[k]);
             if (w->row[s] >= 0) {
                 diag += c;
                 A->col[e] = w->row[s];
@@ -263,6 +282,7 @@ int sph_pressure_solve(sph_world *w, double dt) {
         }
         w->sol[r] = p0;
     }
+    sph_lap(w, SPH_PHASE_PRESSURE_ASSEMBLY);
 
     if (pin >= 0) make_compatible(w, w->m[pin] * source_div(w, pin) / (rho0 * dt));
 
@@ -289,6 +309,7 @@ int sph_pressure_solve(sph_world *w, double dt) {
     w->st.solver_residual = resid;
     w->st.solver_iterations_total += iters;
     w->st.unknowns = nrows;
+    sph_lap(w, SPH_PHASE_PRESSURE_SOLVE);
 
     /* plates: pressure forces, loaded plates' velocities */
     double F0[SPH_MAX_PLATES], Fk[SPH_MAX_LOADED][SPH_MAX_PLATES];
@@ -322,14 +343,25 @@ int sph_pressure_solve(sph_world *w, double dt) {
 }
 
 /* -(grad f)_i / rho_i in the symmetric, momentum-conserving form
- * -sum_j m_j (f_i / rho_i^2 + f_j / rho_j^2) grad_i W_ij (f synced on ghosts). */
-static inline void neg_grad(const sph_world *w, const double *f, int i, double *ax, double *ay) {
-    double fi = f[i] / (w->rho[i] * w->rho[i]), gx = 0.0, gy = 0.0;
-    for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
-        int j = w->nb_j[k];
-        double c = w->m[j] * (fi + f[j] / (w->rho[j] * w->rho[j]));
-        gx -= c * w->nb_gx[k];
-        gy -= c * w->nb_gy[k];
+ * -sum_j m_j (f_i / rho_i^2 + f_j / rho_j^2) grad_i W_ij (f synced on ghosts).
+ * fr holds f / rho^2 per particle (neg_grad_prepare). */
+static void neg_grad_prepare(sph_world *w, const double *f, double *fr) {
+    int nt = w->n + w->ng;
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+    for (int j = 0; j < nt; j++) fr[j] = f[j] / (w->rho[j] * w->rho[j]);
+}
+
+static inline void neg_grad(const sph_world *w, const double *fr, int i, double *ax, double *ay) {
+    double fi = fr[i], gx = 0.0, gy = 0.0;
+    const int *nj = w->nb_j;
+    const double *m = w->m, *ngx = w->nb_gx, *ngy = w->nb_gy;
+    int k0 = w->nb_start[i], k1 = w->nb_start[i + 1];
+#pragma omp simd reduction(+ : gx, gy)
+    for (int k = k0; k < k1; k++) {
+        int j = nj[k];
+        double c = m[j] * (fi + fr[j]);
+        gx -= c * ngx[k];
+        gy -= c * ngy[k];
     }
     *ax = gx;
     *ay = gy;
@@ -348,11 +380,15 @@ static double advance_density(sph_world *w, const double *ax, const double *ay, 
             if (reset_surface) w->rho[i] = rho0;
             continue;
         }
-        double div = 0.0, lxx = w->lxx[i], lxy = w->lxy[i], lyy = w->lyy[i];
-        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
-            int j = w->nb_j[k];
-            double gx = lxx * w->nb_gx[k] + lxy * w->nb_gy[k], gy = lxy * w->nb_gx[k] + lyy * w->nb_gy[k];
-            div += w->m[j] * ((ax[i] - ax[j]) * gx + (ay[i] - ay[j]) * gy);
+        double div = 0.0, lxx = w->lxx[i], lxy = w->lxy[i], lyy = w->lyy[i], axi = ax[i], ayi = ay[i];
+        const int *nj = w->nb_j;
+        const double *m = w->m, *ngx = w->nb_gx, *ngy = w->nb_gy;
+        int k0 = w->nb_start[i], k1 = w->nb_start[i + 1];
+#pragma omp simd reduction(+ : div)
+        for (int k = k0; k < k1; k++) {
+            int j = nj[k];
+            double gx = lxx * ngx[k] + lxy * ngy[k], gy = lxy * ngx[k] + lyy * ngy[k];
+            div += m[j] * ((axi - ax[j]) * gx + (ayi - ay[j]) * gy);
         }
         w->rho[i] += scale * div;
         double e = fabs(w->rho[i] / rho0 - 1.0);
@@ -364,6 +400,7 @@ static double advance_density(sph_world *w, const double *ax, const double *ay, 
 /* u^{n+1} = u* - dt (grad p / rho); continuity with u^{n+1}; x^{n+1} = x^n + dt (u^n + u^{n+1}) / 2. */
 void sph_pressure_correct(sph_world *w, double dt) {
     int n = w->n;
+    neg_grad_prepare(w, w->p, w->sa);
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) {
@@ -371,7 +408,7 @@ void sph_pressure_correct(sph_world *w, double dt) {
             continue;
         }
         double au, av;
-        neg_grad(w, w->p, i, &au, &av);
+        neg_grad(w, w->sa, i, &au, &av);
         w->us[i] += dt * au;
         w->vs[i] += dt * av;
     }
@@ -431,6 +468,7 @@ static int density_pass(sph_world *w, int pass) {
         w->sol[r] = pass ? 0.0 : w->phi[i];
         if (fabs(s) > bmax) bmax = fabs(s);
     }
+    sph_lap(w, SPH_PHASE_CORRECTION);
     if (bmax == 0.0) return 0;
     if (w->pin >= 0) make_compatible(w, -w->m[w->pin] * gamma * (rho0 - w->rho[w->pin]) / rho0);
     sph_solve_result res = sph_solver_pcg(&w->solver, &w->A, w->b, w->sol, w->par.tol, w->par.max_iter, w->threads);
@@ -441,14 +479,16 @@ static int density_pass(sph_world *w, int pass) {
                               w->steps, w->t, res.residual, res.iterations, w->par.tol, nrows);
     w->st.solver_iterations += res.iterations;
     w->st.solver_iterations_total += res.iterations;
+    sph_lap(w, SPH_PHASE_PRESSURE_SOLVE);
     double *f = pass ? w->dp : w->phi;
     scatter(w, w->sol, f);
     double *dx = w->xs, *dy = w->ys;
+    neg_grad_prepare(w, f, w->sa);
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int i = 0; i < n; i++) {
         dx[i] = dy[i] = 0.0;
         if (w->kind[i] != SPH_FLUID) continue;
-        neg_grad(w, f, i, &dx[i], &dy[i]);
+        neg_grad(w, w->sa, i, &dx[i], &dy[i]);
     }
     sph_boundary_sync(w, dx, dy, 1);
     w->st.max_density_error = advance_density(w, dx, dy, 1.0, 0);

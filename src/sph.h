@@ -108,6 +108,20 @@ double sph_world_time(const sph_world *w);
 double sph_world_dt(const sph_world *w);
 long sph_world_steps(const sph_world *w);
 
+enum {
+    SPH_PHASE_SORT,
+    SPH_PHASE_NEIGHBOURS,
+    SPH_PHASE_RHEOLOGY,
+    SPH_PHASE_VISC_ASSEMBLY,
+    SPH_PHASE_VISC_SOLVE,
+    SPH_PHASE_PRESSURE_ASSEMBLY,
+    SPH_PHASE_PRESSURE_SOLVE,
+    SPH_PHASE_CORRECTION,
+    SPH_PHASE_SHIFTING,
+    SPH_PHASE_OTHER,
+    SPH_PHASES
+};
+
 typedef struct sph_stats {
     int particles;            /* fluid + wall (real, not ghosts)          */
     int fluid;
@@ -130,7 +144,20 @@ typedef struct sph_stats {
     int yielded;              /* fluid particles with |tau| > tau0        */
     double neighbours_mean;
     double wall_time;         /* seconds spent in sph_world_step so far   */
+    /* Wall time of each phase of the step, seconds since the world was made (their sum is
+     * wall_time); names and order from sph_phase_names(). */
+    double phase_time[SPH_PHASES];
+    long steps;               /* steps taken (the phases' divisor)        */
 } sph_stats;
+
+/* The phases of sph_world_step timed in sph_stats.phase_time, NULL-terminated:
+ * sort (periodic wrap, sort by cell, ghosts), neighbours (binning, neighbour list, kernel
+ * gradients, renormalisation, surface flags), rheology, viscous_assembly (implicit matrix
+ * and right-hand side, or the explicit sweep; plate viscous forces), viscous_solve,
+ * pressure_assembly, pressure_solve (the pressure, plate-sensitivity and density-correction
+ * solves), correction (projection, continuity, density-correction displacements), shifting,
+ * other (time-step bookkeeping, plate forces and motion, checks). */
+const char *const *sph_phase_names(void);
 
 void sph_world_stats(const sph_world *w, sph_stats *s);
 

@@ -16,23 +16,27 @@ void sph_viscous_rheology(sph_world *w) {
         if (w->kind[i] != SPH_FLUID) continue;
         double uxx = 0, uxy = 0, uyx = 0, uyy = 0; /* uab = d u_a / d x_b */
         double ui = w->u[i], vi = w->v[i];
-        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
-            int j = w->nb_j[k];
-            double du, dv;
-            if (w->kind[j] == SPH_FLUID) {
-                du = w->u[j] - ui;
-                dv = w->v[j] - vi;
-            } else {
-                double wx, wy, beta = sph_plate_noslip(w, i, j);
-                sph_plate_wall_velocity(w, j, &wx, &wy);
-                du = -beta * (ui - wx);
-                dv = -beta * (vi - wy);
-            }
-            double vol = w->m[j] / w->rho[j];
-            uxx += vol * du * w->nb_gx[k];
-            uxy += vol * du * w->nb_gy[k];
-            uyx += vol * dv * w->nb_gx[k];
-            uyy += vol * dv * w->nb_gy[k];
+        int k0 = w->nb_start[i], km = w->nb_mid[i], k1 = w->nb_start[i + 1];
+        const int *nj = w->nb_j;
+        const double *gxk = w->nb_gx, *gyk = w->nb_gy, *vol = w->vol, *u = w->u, *v = w->v;
+#pragma omp simd reduction(+ : uxx, uxy, uyx, uyy)
+        for (int k = k0; k < km; k++) { /* fluid neighbours */
+            int j = nj[k];
+            double du = vol[j] * (u[j] - ui), dv = vol[j] * (v[j] - vi);
+            uxx += du * gxk[k];
+            uxy += du * gyk[k];
+            uyx += dv * gxk[k];
+            uyy += dv * gyk[k];
+        }
+        for (int k = km; k < k1; k++) { /* walls: the no-slip extrapolation */
+            int j = nj[k];
+            double wx, wy, beta = sph_plate_noslip(w, i, j);
+            sph_plate_wall_velocity(w, j, &wx, &wy);
+            double du = -vol[j] * beta * (ui - wx), dv = -vol[j] * beta * (vi - wy);
+            uxx += du * gxk[k];
+            uxy += du * gyk[k];
+            uyx += dv * gxk[k];
+            uyy += dv * gyk[k];
         }
         /* renormalised: grad u = (sum V du (x) grad W) L, first-order consistent near a
          * free surface where the kernel support is truncated */
@@ -52,9 +56,11 @@ void sph_viscous_rheology(sph_world *w) {
     sph_boundary_sync(w, w->eta, w->gd, 0);
 }
 
-/* The Morris coefficient of fluid pair k (i, j): c = m_j (eta_i + eta_j) F_ij / (rho_i rho_j). */
+/* The Morris coefficient of fluid pair k (i, j): c = m_j (eta_i + eta_j) F_ij / (rho_i rho_j),
+ * as V_j (eta_i + eta_j) F_ij / rho_i with V_j = m_j / rho_j (w->vol, set by the
+ * neighbour build: the density has not changed since). */
 static inline double fluid_coeff(const sph_world *w, int i, int j, int k) {
-    return w->m[j] * (w->eta[i] + w->eta[j]) * w->nb_f[k] / (w->rho[i] * w->rho[j]);
+    return w->vol[j] * (w->eta[i] + w->eta[j]) * w->nb_f[k] / w->rho[i];
 }
 
 /* A wall neighbour j (pair k) of fluid particle i enters the Morris sum as
@@ -62,7 +68,7 @@ static inline double fluid_coeff(const sph_world *w, int i, int j, int k) {
  * returns cw and the wall velocity. */
 static inline double wall_coeff(const sph_world *w, int i, int j, int k, double *wx, double *wy) {
     sph_plate_wall_velocity(w, j, wx, wy);
-    return sph_plate_noslip(w, i, j) * w->m[j] * 2.0 * w->eta[i] * w->nb_f[k] / (w->rho[i] * w->rho[j]);
+    return sph_plate_noslip(w, i, j) * w->vol[j] * 2.0 * w->eta[i] * w->nb_f[k] / w->rho[i];
 }
 
 /* The force along its axis that this pair puts on wall j's plate (0 for a fixed plate). */
@@ -91,21 +97,25 @@ void sph_viscous_explicit(sph_world *w, double dt) {
             continue;
         }
         double ui = w->u[i], vi = w->v[i];
-        double au = 0, av = 0;
-        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
-            int j = w->nb_j[k];
-            double du, dv, c;
-            if (w->kind[j] == SPH_FLUID) {
-                du = ui - w->u[j];
-                dv = vi - w->v[j];
-                c = fluid_coeff(w, i, j, k);
-            } else {
-                double wx, wy;
-                c = wall_coeff(w, i, j, k, &wx, &wy);
-                du = ui - wx;
-                dv = vi - wy;
-                fplate[w->kind[j]] += plate_pull(w, i, j, c, ui, vi, wx, wy);
-            }
+        double au = 0, av = 0, ei = w->eta[i];
+        int k0 = w->nb_start[i], km = w->nb_mid[i], k1 = w->nb_start[i + 1];
+        const int *nj = w->nb_j;
+        const double *nf = w->nb_f, *vol = w->vol, *eta = w->eta, *u = w->u, *v = w->v;
+#pragma omp simd reduction(+ : au, av)
+        for (int k = k0; k < km; k++) { /* fluid: c V_j (eta_i + eta_j) F_ij (u_i - u_j), c = 1 / rho_i below */
+            int j = nj[k];
+            double c = vol[j] * (ei + eta[j]) * nf[k];
+            au += c * (ui - u[j]);
+            av += c * (vi - v[j]);
+        }
+        double ri = 1.0 / w->rho[i];
+        au *= ri;
+        av *= ri;
+        for (int k = km; k < k1; k++) { /* walls */
+            int j = nj[k];
+            double wx, wy, c = wall_coeff(w, i, j, k, &wx, &wy);
+            double du = ui - wx, dv = vi - wy;
+            fplate[w->kind[j]] += plate_pull(w, i, j, c, ui, vi, wx, wy);
             au += c * du;
             av += c * dv;
         }
@@ -129,6 +139,7 @@ static int reserve_visc(sph_world *w, int nrows) {
     if (nrows <= w->vrows_cap && w->vb) return 0;
     int cap = nrows + nrows / 4 + 64;
     if (sph_grow((void **)&w->vb, sizeof(double), cap) || sph_grow((void **)&w->vsol, sizeof(double), cap) ||
+        sph_grow((void **)&w->vdiag, sizeof(double), cap) || sph_grow((void **)&w->vrhs, sizeof(double), cap) ||
         sph_grow((void **)&w->vrow_of, sizeof(int), cap))
         return sph_world_fail(w, "out of memory (%d viscous unknowns)", nrows);
     w->vrows_cap = cap;
@@ -136,41 +147,69 @@ static int reserve_visc(sph_world *w, int nrows) {
 }
 
 /* Values and right-hand side of component comp (0: u, 1: v); the structure is in w->V. */
+/* Both components have the same coefficients; they differ only by the image signs of
+ * ghosts (gsx, gsy), the wall velocity and the gravity. Component 0 computes every
+ * coefficient once, keeping component 1's values, diagonal and right-hand side (vval,
+ * vdiag, vrhs) for its turn, which is then a copy. */
 static void visc_assemble(sph_world *w, double dt, int comp) {
     sph_csr *A = &w->V;
     int nrows = A->n;
-    double g = w->par.gravity[comp];
+    if (comp == 1) {
+        int nnz = A->start[nrows];
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+        for (int e = 0; e < nnz; e++) A->val[e] = w->vval[e];
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+        for (int r = 0; r < nrows; r++) {
+            A->diag[r] = w->vdiag[r];
+            w->vb[r] = w->vrhs[r];
+            w->vsol[r] = w->v[w->vrow_of[r]];
+        }
+        sph_lap(w, SPH_PHASE_VISC_ASSEMBLY);
+        return;
+    }
+    double gx = w->par.gravity[0], gy = w->par.gravity[1];
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int r = 0; r < nrows; r++) {
         int i = w->vrow_of[r], e = A->start[r] + 1;
         double mi = w->m[i];
-        double diag = 1.0, rhs = (comp ? w->v[i] : w->u[i]) + dt * g;
-        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
-            int j = w->nb_j[k];
-            if (w->kind[j] == SPH_FLUID) {
-                int s = w->src[j];
-                double c = dt * fluid_coeff(w, i, j, k);
-                double sg = comp ? w->gsy[j] : w->gsx[j];
-                diag -= c;
-                if (s == i) {
-                    diag += c * sg; /* own image: c (u_i - sg u_i) */
-                } else {
-                    A->col[e] = w->row[s];
-                    A->val[e] = mi * c * sg;
-                    e++;
-                }
+        double du = 1.0, dv = 1.0, ru = w->u[i] + dt * gx, rv = w->v[i] + dt * gy;
+        int k0 = w->nb_start[i], km = w->nb_mid[i], k1 = w->nb_start[i + 1];
+        double ei = w->eta[i], dr = dt / w->rho[i];
+        for (int k = k0; k < km; k++) { /* fluid: c = dt V_j (eta_i + eta_j) F_ij / rho_i */
+            int j = w->nb_j[k], s = w->src[j];
+            double c = dr * (w->vol[j] * (ei + w->eta[j]) * w->nb_f[k]);
+            double sx = w->gsx[j], sy = w->gsy[j];
+            du -= c;
+            dv -= c;
+            if (s == i) { /* own image: c (u_i - sg u_i) */
+                du += c * sx;
+                dv += c * sy;
             } else {
-                double wx, wy, c = dt * wall_coeff(w, i, j, k, &wx, &wy);
-                diag -= c;
-                rhs -= c * (comp ? wy : wx);
+                A->col[e] = w->row[s];
+                A->val[e] = mi * c * sx;
+                w->vval[e] = mi * c * sy;
+                e++;
             }
         }
-        A->col[A->start[r]] = r;
-        A->val[A->start[r]] = mi * diag;
-        A->diag[r] = mi * diag;
-        w->vb[r] = mi * rhs;
-        w->vsol[r] = comp ? w->v[i] : w->u[i];
+        for (int k = km; k < k1; k++) { /* walls */
+            int j = w->nb_j[k];
+            double wx, wy, c = dt * wall_coeff(w, i, j, k, &wx, &wy);
+            du -= c;
+            dv -= c;
+            ru -= c * wx;
+            rv -= c * wy;
+        }
+        int d = A->start[r];
+        A->col[d] = r;
+        A->val[d] = mi * du;
+        A->diag[r] = mi * du;
+        w->vval[d] = mi * dv;
+        w->vdiag[r] = mi * dv;
+        w->vb[r] = mi * ru;
+        w->vrhs[r] = mi * rv;
+        w->vsol[r] = w->u[i];
     }
+    sph_lap(w, SPH_PHASE_VISC_ASSEMBLY);
 }
 
 int sph_viscous_implicit(sph_world *w, double dt) {
@@ -184,13 +223,18 @@ int sph_viscous_implicit(sph_world *w, double dt) {
     sph_csr *A = &w->V;
     if (sph_csr_reserve(A, nrows, 1)) return sph_world_fail(w, "out of memory");
     A->start[0] = 0;
-    for (int r = 0; r < nrows; r++) {
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+    for (int r = 0; r < nrows; r++) { /* the row's length: diagonal + fluid neighbours but its images */
         int i = w->vrow_of[r], c = 1;
-        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
-            int j = w->nb_j[k];
-            c += w->kind[j] == SPH_FLUID && w->src[j] != i;
-        }
-        A->start[r + 1] = A->start[r] + c;
+        for (int k = w->nb_start[i]; k < w->nb_mid[i]; k++) c += w->src[w->nb_j[k]] != i;
+        A->start[r + 1] = c;
+    }
+    for (int r = 0; r < nrows; r++) A->start[r + 1] += A->start[r];
+    if (A->start[nrows] > w->vval_cap) { /* component 1's values (visc_assemble) */
+        int cap = A->start[nrows] + A->start[nrows] / 4 + 64;
+        if (sph_grow((void **)&w->vval, sizeof(double), cap))
+            return sph_world_fail(w, "out of memory (viscous matrix)");
+        w->vval_cap = cap;
     }
     if (sph_csr_reserve(A, nrows, A->start[nrows]) || sph_solver_reserve(&w->solver, nrows))
         return sph_world_fail(w, "out of memory (viscous matrix)");
@@ -211,6 +255,7 @@ int sph_viscous_implicit(sph_world *w, double dt) {
         if (res.residual > resid) resid = res.residual;
         double *dst = comp ? w->vs : w->us;
         for (int r = 0; r < nrows; r++) dst[w->vrow_of[r]] = w->vsol[r];
+        sph_lap(w, SPH_PHASE_VISC_SOLVE);
     }
     w->st.visc_iterations = iters;
     w->st.visc_residual = resid;
@@ -223,9 +268,8 @@ int sph_viscous_implicit(sph_world *w, double dt) {
             sph_plate_wall_velocity(w, i, &w->us[i], &w->vs[i]);
             continue;
         }
-        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
+        for (int k = w->nb_mid[i]; k < w->nb_start[i + 1]; k++) { /* walls */
             int j = w->nb_j[k];
-            if (w->kind[j] == SPH_FLUID) continue;
             if (w->plates[w->kind[j]].axis < 0) continue;
             double wx, wy, cw = wall_coeff(w, i, j, k, &wx, &wy);
             fplate[w->kind[j]] += plate_pull(w, i, j, cw, w->us[i], w->vs[i], wx, wy);

@@ -93,10 +93,10 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
     {&w->x,   &w->y,   &w->u,   &w->v,   &w->us,  &w->vs,  &w->ax,       &w->ay,       \
      &w->p,   &w->rho, &w->m,   &w->eta, &w->gd,  &w->divr, &w->xs, &w->ys, &w->lxx,       \
      &w->lxy, &w->lyy, &w->gux, &w->guy, &w->gvx, &w->gvy, &w->phi, &w->psens[0], &w->psens[1], \
-     &w->psens[2], &w->psens[3], &w->dp}
+     &w->psens[2], &w->psens[3], &w->dp, &w->vol, &w->sa, &w->sb, &w->cx, &w->cy}
 #define PARTICLE_INTS(w)                                                                    \
     {&w->kind, &w->mat, &w->id, &w->src, &w->row, &w->perm, &w->iscratch, &w->cell_of,     \
-     &w->nb_count}
+     &w->nb_count, &w->nb_mid}
 
 void sph_world_free(sph_world *w) {
     if (!w) return;
@@ -105,14 +105,17 @@ void sph_world_free(sph_world *w) {
     int **ip[] = PARTICLE_INTS(w);
     for (size_t k = 0; k < sizeof ip / sizeof *ip; k++) free(*ip[k]);
     double **o[] = {&w->nb_gx, &w->nb_gy, &w->nb_f, &w->b, &w->sol, &w->bk[0], &w->bk[1], &w->bk[2],
-                    &w->bk[3], &w->solk[0], &w->solk[1], &w->solk[2], &w->solk[3], &w->vb, &w->vsol};
+                    &w->bk[3], &w->solk[0], &w->solk[1], &w->solk[2], &w->solk[3], &w->vb, &w->vsol, &w->vval, &w->vdiag, &w->vrhs};
     for (size_t k = 0; k < sizeof o / sizeof *o; k++) free(*o[k]);
     int **oi[] = {&w->cell_start, &w->cell_items, &w->nb_start, &w->nb_j, &w->row_of, &w->vrow_of};
     for (size_t k = 0; k < sizeof oi / sizeof *oi; k++) free(*oi[k]);
+    free(w->cand);
+    free(w->cand_j);
     free(w->gsx);
     free(w->gsy);
     free(w->surf);
     free(w->active);
+    free(w->cellfl);
     free(w->cellflag);
     sph_csr_free(&w->A);
     sph_csr_free(&w->V);
@@ -141,8 +144,8 @@ int sph_world_reserve(sph_world *w, int need) {
     int *ns = realloc(w->nb_start, sizeof(int) * (size_t)(cap + 1));
     if (!ns) return sph_world_fail(w, "out of memory (%d particles)", need);
     w->nb_start = ns;
-    unsigned char **c[] = {&w->surf, &w->active};
-    for (size_t k = 0; k < 2; k++) {
+    unsigned char **c[] = {&w->surf, &w->active, &w->cellfl};
+    for (size_t k = 0; k < 3; k++) {
         unsigned char *q = realloc(*c[k], (size_t)cap);
         if (!q) return sph_world_fail(w, "out of memory (%d particles)", need);
         memset(q + w->cap, 0, (size_t)(cap - w->cap));
@@ -231,15 +234,21 @@ long sph_world_steps(const sph_world *w) { return w->steps; }
 int sph_world_nfluid(const sph_world *w) { return w->nfluid; }
 
 static int check_finite(sph_world *w) {
-    for (int i = 0; i < w->n; i++) {
+    int n = w->n, first = n; /* the first bad particle, found in parallel */
+#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(min : first)
+    for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) continue;
         if (!isfinite(w->x[i]) || !isfinite(w->y[i]) || !isfinite(w->u[i]) || !isfinite(w->v[i]) ||
             !isfinite(w->p[i]) || !isfinite(w->rho[i]))
-            return sph_world_fail(w,
-                                  "NaN or infinity at fluid particle %d at step %ld (t = %g): "
-                                  "x = (%g, %g), u = (%g, %g), p = %g, rho = %g",
-                                  w->id[i], w->steps, w->t, w->x[i], w->y[i], w->u[i], w->v[i],
-                                  w->p[i], w->rho[i]);
+            first = i < first ? i : first;
+    }
+    if (first < n) {
+        int i = first;
+        return sph_world_fail(w,
+                              "NaN or infinity at fluid particle %d at step %ld (t = %g): "
+                              "x = (%g, %g), u = (%g, %g), p = %g, rho = %g",
+                              w->id[i], w->steps, w->t, w->x[i], w->y[i], w->u[i], w->v[i], w->p[i],
+                              w->rho[i]);
     }
     for (int k = 0; k < w->nplates; k++)
         if (!isfinite(w->plates[k].vel) || !isfinite(w->plates[k].force))
@@ -310,8 +319,21 @@ static void mark_surface(sph_world *w) {
     w->st.surface = ns;
 }
 
+static const char *const PHASE_NAMES[] = {"sort",     "neighbours",        "rheology",
+                                          "viscous_assembly", "viscous_solve", "pressure_assembly",
+                                          "pressure_solve", "correction", "shifting", "other", 0};
+
+const char *const *sph_phase_names(void) { return PHASE_NAMES; }
+
+void sph_lap(sph_world *w, int phase) {
+    double now = omp_get_wtime();
+    w->phase_time[phase] += now - w->lap;
+    w->lap = now;
+}
+
 int sph_world_step(sph_world *w, double dt) {
     double t0 = omp_get_wtime();
+    w->lap = t0;
     prepare(w);
     if (w->nfluid == 0) return sph_world_fail(w, "the world has no fluid: call fill first");
     if (!(dt > 0)) dt = sph_timestep_compute(w);
@@ -327,21 +349,30 @@ int sph_world_step(sph_world *w, double dt) {
         vold[k] = pl->vel;
     }
 
+    sph_lap(w, SPH_PHASE_OTHER);
     sph_boundary_wrap(w);
-    if (sph_neighbours_sort(w) || sph_boundary_ghosts(w) || sph_neighbours_build(w)) return -1;
+    if (sph_neighbours_sort(w) || sph_boundary_ghosts(w)) return -1;
+    sph_lap(w, SPH_PHASE_SORT);
+    if (sph_neighbours_build(w)) return -1;
     mark_surface(w);
+    sph_lap(w, SPH_PHASE_NEIGHBOURS);
     sph_viscous_rheology(w);
+    sph_lap(w, SPH_PHASE_RHEOLOGY);
     if (w->par.viscosity == SPH_VISC_IMPLICIT) {
         if (sph_viscous_implicit(w, dt)) return -1;
     } else {
         sph_viscous_explicit(w, dt);
     }
+    sph_lap(w, SPH_PHASE_VISC_ASSEMBLY); /* the plates' viscous forces */
     if (sph_pressure_solve(w, dt)) return -1;
     for (int k = 0; k < w->nplates; k++)
         if (w->plates[k].mode == SPH_PLATE_LOAD) w->plates[k].vel = w->plates[k].vel_new;
+    sph_lap(w, SPH_PHASE_OTHER); /* plate pressure forces, loaded plates' velocities */
     sph_pressure_correct(w, dt);
     if (sph_density_correct(w)) return -1;
+    sph_lap(w, SPH_PHASE_CORRECTION);
     if (w->par.shifting > 0) sph_shifting_apply(w, dt);
+    sph_lap(w, SPH_PHASE_SHIFTING);
     for (int k = 0; k < w->nplates; k++) sph_plate_move(w, k, 0.5 * dt * (vold[k] + w->plates[k].vel));
 
     w->t += dt;
@@ -351,9 +382,10 @@ int sph_world_step(sph_world *w, double dt) {
     w->st.visc_iterations_total += w->st.visc_iterations;
     if (w->st.max_density_error > w->st.peak_density_error)
         w->st.peak_density_error = w->st.max_density_error;
-    w->wall_time += omp_get_wtime() - t0;
-    if (check_finite(w) || sph_plate_check_escape(w)) return -1;
-    return 0;
+    int bad = check_finite(w) || sph_plate_check_escape(w);
+    sph_lap(w, SPH_PHASE_OTHER);
+    w->wall_time += w->lap - t0;
+    return bad ? -1 : 0;
 }
 
 void sph_world_stats(const sph_world *w, sph_stats *s) {
@@ -383,6 +415,8 @@ void sph_world_stats(const sph_world *w, sph_stats *s) {
     for (int i = 0; i < w->n; i++) rows += w->active[i];
     s->neighbours_mean = rows ? (double)pairs / rows : 0.0;
     s->wall_time = w->wall_time;
+    memcpy(s->phase_time, w->phase_time, sizeof s->phase_time);
+    s->steps = w->steps;
 }
 
 static const char *const FIELD_NAMES[] = {"x",     "y",        "u",      "v",       "p",

@@ -139,6 +139,31 @@ T.case("laws", function()
   T.checkerror("each", "run with a non-function each", w.run, w, { until_t = 1, each = 3 })
 end)
 
+T.case("phase timers", function()
+  local w = sph.world{ dx = 0.1, threads = 1 }
+  w:fill{ rect = { 0, 0, 1, 1 }, material = sph.bingham{ mu = 1, tau0 = 1, m = 100 } }
+  w:plate{ rect = { -1, -0.3, 2, 0 } }
+  local top = w:plate{ rect = { -1, 1, 2, 1.3 }, axis = "y" }
+  top:velocity(-1)
+  for _ = 1, 3 do w:step() end
+  local st = w:stats()
+  local names = { "sort", "neighbours", "rheology", "viscous_assembly", "viscous_solve",
+                  "pressure_assembly", "pressure_solve", "correction", "shifting", "other" }
+  local sum, ok, count = 0, true, 0
+  for _, k in ipairs(names) do
+    local v = st.phases[k]
+    if type(v) ~= "number" or v < 0 then ok = false end
+    sum = sum + (v or 0)
+  end
+  for _ in pairs(st.phases) do count = count + 1 end
+  T.check(ok and count == #names, "stats().phases has the ten phases, each a time >= 0",
+    string.format("%d entries", count))
+  T.check(st.phases.pressure_solve > 0 and st.phases.neighbours > 0, "the solve and the neighbour phases took time")
+  -- the phases tile the step: their sum is wall_time up to the rounding of the sums
+  T.close(sum, st.wall_time, 1e-9 * (1 + st.wall_time), "the phases add up to wall_time")
+  T.check(st.steps == 3, "stats().steps counts the steps")
+end)
+
 T.case("run schedule", function()
   local w = sph.world{ dx = 0.1 }
   w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }

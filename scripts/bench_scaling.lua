@@ -1,0 +1,177 @@
+-- Benchmark (not a test): cost of the step and the share of each of its phases from 10^3 to
+-- 10^6 particles, on 1 and 2 threads. The paper's constant-velocity squeeze (Bn = 5,
+-- M = 800, Re = 1, upper plate at V = -1, half sample with a symmetry plane) at a ladder of
+-- resolutions dx = 1/40 .. 1/1400; for each, a few untimed steps (the impulsive start),
+-- then `steps` timed steps of a fixed dt = dt_dx * dx (w:step(dt): every run of a
+-- resolution takes the same steps), timed by the engine's clock (w:stats().wall_time and
+-- its per-phase split w:stats().phases).
+-- Run by scripts/bench.sh (`make bench`); by hand:
+--   build/sph scripts/bench_scaling.lua [max_n=120000] [runs=3] [steps=..] [warmup=3]
+--                                       [threads=1,2] [dx=0.0025] [out=out/bench]
+-- max_n caps the particle count (fluid + wall) of the ladder (default 1.2e5; the 10^6 row is
+-- opt-in: max_n=1e6, not run yet, an hour or more with the Jacobi-preconditioned solvers); dx= runs one
+-- resolution only. Runs are interleaved (run 1 of every thread count, then run 2, ...) and
+-- each row is the median over runs; above 3e4 particles one run (the steps are long).
+-- Columns: particles (fluid + wall, ghosts not counted), ns per particle-step (the whole
+-- step: sort, neighbours, sweeps and the solves), pressure-solver iterations per step
+-- (pressure and density-correction solves), viscous iterations per step (u and v), the
+-- share of each phase in % of the step, and for 2 threads the speed-up over 1 thread of the
+-- whole step and of the sweeps alone (everything but the two solve phases).
+-- Writes scaling.csv and scaling.png (log-log ns per particle-step against particles).
+local sph = require "sph"
+local squeeze = require "sph.squeeze"
+local o = ... or {}
+
+local max_n = o.max_n or 1.2e5
+local warmup = math.floor(o.warmup or 3)
+local dt_dx = o.dt_dx or 0.025 -- dt = dx / 40: about the adaptive step of this case (density-error limited)
+local outdir = o.out or "out/bench"
+local threads = {}
+for t in tostring(o.threads or "1,2"):gmatch("%d+") do threads[#threads + 1] = math.floor(tonumber(t)) end
+local ladder = { 40, 80, 160, 320, 450, 640, 1000, 1400 }
+if o.dx then ladder = { 1 / o.dx } end
+
+local PHASES = { "sort", "neighbours", "rheology", "viscous_assembly", "viscous_solve",
+                 "pressure_assembly", "pressure_solve", "correction", "shifting", "other" }
+local SHORT = { sort = "sort", neighbours = "nbrs", rheology = "rheo", viscous_assembly = "v-asm",
+                viscous_solve = "v-sol", pressure_assembly = "p-asm", pressure_solve = "p-sol",
+                correction = "corr", shifting = "shift", other = "other" }
+
+local function median(t)
+  local s = table.move(t, 1, #t, 1, {})
+  table.sort(s)
+  local n = #s
+  return n % 2 == 1 and s[(n + 1) // 2] or 0.5 * (s[n // 2] + s[n // 2 + 1])
+end
+
+local function build(k, nthreads)
+  return squeeze.build{ dx = 1 / k, Re = 1, Bn = 5, M = 800, mode = "velocity", V = 1,
+                        world = { threads = nthreads, max_iter = 100000 } }
+end
+
+-- particles (fluid + wall) of each rung, from a world that is built and dropped
+local rungs = {}
+for _, k in ipairs(ladder) do
+  local fluid = 0.5 * k * k -- the half sample 0.5 x 1
+  if #rungs == 0 or fluid <= max_n or o.dx then
+    local w = build(k, 1)
+    local s = w:stats()
+    w:close()
+    if s.fluid + s.wall <= max_n or o.dx then
+      rungs[#rungs + 1] = { k = k, dx = 1 / k, particles = s.fluid + s.wall }
+    end
+  end
+end
+
+local function one_run(r, nthreads, steps)
+  local w, top = build(r.k, nthreads)
+  local dt = dt_dx * r.dx
+  for _ = 1, warmup do w:step(dt) end
+  local s0 = w:stats()
+  for _ = 1, steps do w:step(dt) end
+  local s1 = w:stats()
+  local n = s1.steps - s0.steps
+  local wall = s1.wall_time - s0.wall_time
+  local res = { ns = 1e9 * wall / (n * r.particles), wall = wall,
+                piter = (s1.solver_iterations_total - s0.solver_iterations_total) / n,
+                viter = (s1.visc_iterations_total - s0.visc_iterations_total) / n,
+                phases = {}, neighbours = s1.neighbours }
+  for _, p in ipairs(PHASES) do res.phases[p] = (s1.phases[p] - s0.phases[p]) / n end
+  res.h = top.position
+  w:close()
+  return res
+end
+
+-- the table: printed row by row as the rungs finish (a long run shows its progress)
+local head = string.format("%-7s %9s %3s %10s %7s %7s %6s", "dx", "particles", "thr", "ns/pt-step",
+  "p-it/st", "v-it/st", "spread")
+for _, p in ipairs(PHASES) do head = head .. string.format(" %6s", SHORT[p]) end
+head = head .. string.format(" %7s %7s", "x step", "x sweep")
+print(head)
+io.stdout:flush()
+local one = {} -- the 1-thread row of each rung, for the speed-ups
+local function print_row(row)
+  local line = string.format("1/%-5.5g %9d %3d %10.0f %7.1f %7.1f %5.0f%%", row.k, row.particles, row.threads,
+    row.ns, row.piter, row.viter, 100 * row.spread)
+  for _, p in ipairs(PHASES) do line = line .. string.format(" %5.1f%%", 100 * row.phases[p] / row.step) end
+  local b = one[row.k]
+  if row.threads ~= 1 and b then
+    line = line .. string.format(" %7.2f %7.2f", b.step / row.step, b.sweeps / row.sweeps)
+  end
+  print(line)
+  io.stdout:flush()
+end
+
+local rows = {}
+for _, r in ipairs(rungs) do
+  local runs = math.floor(o.runs or (r.particles > 3e4 and 1 or 3))
+  local steps = math.floor(o.steps or math.max(3, math.min(40, 4e5 // r.particles)))
+  local byt = {}
+  for _, t in ipairs(threads) do byt[t] = {} end
+  for _ = 1, runs do
+    for _, t in ipairs(threads) do byt[t][#byt[t] + 1] = one_run(r, t, steps) end
+  end
+  for _, t in ipairs(threads) do
+    local list = byt[t]
+    local ns = {}
+    for i, x in ipairs(list) do ns[i] = x.ns end
+    local med = median(ns)
+    local pick = list[1] -- the run whose cost is the median (its phases are reported)
+    for _, x in ipairs(list) do if math.abs(x.ns - med) < math.abs(pick.ns - med) then pick = x end end
+    local step = 0
+    for _, p in ipairs(PHASES) do step = step + pick.phases[p] end
+    local sweeps = step - pick.phases.viscous_solve - pick.phases.pressure_solve
+    local lo, hi = math.huge, 0
+    for _, x in ipairs(ns) do lo, hi = math.min(lo, x), math.max(hi, x) end
+    local row = { k = r.k, dx = r.dx, particles = r.particles, threads = t, runs = runs, steps = steps,
+                  ns = med, spread = (hi - lo) / med, piter = pick.piter, viter = pick.viter,
+                  phases = pick.phases, step = step, sweeps = sweeps, neighbours = pick.neighbours }
+    rows[#rows + 1] = row
+    if t == 1 then one[r.k] = row end
+    print_row(row)
+  end
+end
+
+print("phases in % of the step: sort (+ ghosts), nbrs (neighbour list, kernel gradients), rheo (shear rate,")
+print("viscosity), v-asm / v-sol (implicit viscous assembly / solve), p-asm / p-sol (pressure assembly /")
+print("pressure and density-correction solves), corr (projection, continuity, density correction), shift,")
+print("other (plates, checks). x step, x sweep: speed-up over 1 thread of the step and of the sweeps (the")
+print("step without the two solve phases). ns/pt-step: median over runs of the step's wall time per particle.")
+
+os.execute("mkdir -p '" .. outdir .. "'")
+local csv = assert(io.open(outdir .. "/scaling.csv", "w"))
+local cols = "dx,particles,threads,runs,steps,ns_per_particle_step,spread,pressure_iterations_per_step," ..
+  "viscous_iterations_per_step,neighbours_mean,step_s"
+for _, p in ipairs(PHASES) do cols = cols .. "," .. p .. "_s" end
+csv:write(cols, "\n")
+for _, row in ipairs(rows) do
+  local line = string.format("%.10g,%d,%d,%d,%d,%.6g,%.4g,%.6g,%.6g,%.4g,%.6g", row.dx, row.particles, row.threads,
+    row.runs, row.steps, row.ns, row.spread, row.piter, row.viter, row.neighbours, row.step)
+  for _, p in ipairs(PHASES) do line = line .. string.format(",%.6g", row.phases[p]) end
+  csv:write(line, "\n")
+end
+csv:close()
+
+local series = {}
+for _, t in ipairs(threads) do
+  local xs, ys, sx, sy = {}, {}, {}, {}
+  for _, row in ipairs(rows) do
+    if row.threads == t then
+      xs[#xs + 1], ys[#ys + 1] = row.particles, row.ns
+      sx[#sx + 1], sy[#sy + 1] = row.particles, 1e9 * row.sweeps / row.particles
+    end
+  end
+  if #xs > 0 then
+    series[#series + 1] = { x = xs, y = ys, label = string.format("step, %d thread%s", t, t > 1 and "s" or ""),
+                            style = "both" }
+    series[#series + 1] = { x = sx, y = sy, label = string.format("sweeps only, %d thread%s", t, t > 1 and "s" or ""),
+                            style = "markers" }
+  end
+end
+if #rows > 1 then
+  local ok, err = sph.plot{ file = outdir .. "/scaling.png", xlabel = "particles (fluid + wall)",
+    ylabel = "ns per particle-step", log = "xy", series = series,
+    title = "squeeze Bn = 5, M = 800, Re = 1, V = -1: cost of the step" }
+  if not ok then error(err) end
+end
+print("wrote " .. outdir .. "/scaling.csv" .. (#rows > 1 and " and " .. outdir .. "/scaling.png" or ""))
