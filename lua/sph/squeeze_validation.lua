@@ -27,6 +27,7 @@
 --
 -- References (PHYSICS.md, whole sample, A = 1):
 --   Newtonian, constant velocity V:  F = 8 mu V a^3 / h^3 = mu V / h^6;
+-- (A is taken from the particle count: see area below)
 --   Newtonian, constant load F:       -dh/dt = F h^6 / mu, so h^-5 = 5 F (t - t_v) / mu with
 --                                     a virtual time origin t_v (the early squeeze is not
 --                                     thin-film, so only the late slope is compared);
@@ -104,6 +105,14 @@ local function result(w, err, extra)
   return r
 end
 
+-- The sample's area (whole sample, per unit depth) from its particle count: the fill puts
+-- one particle per dx^2, and when 0.5 / dx is not a whole number (dx = 1/25: 12.5) the
+-- half-width is 13 or 12 columns, not 0.5. The references depend on it as A^3 (Newtonian)
+-- and A^2 (plastic): with A = 1 taken for granted, dx = 1/25 came out 12 % off.
+local function area(w, dx)
+  return 2 * w:stats().fluid * dx * dx
+end
+
 -- sph.world options for a run: threads, plus any ro.world (studies: shifting, density_tol)
 local function world_opts(ro)
   local t = { threads = ro.threads }
@@ -124,10 +133,11 @@ local function velocity_case(name, opts, fref)
     local h_end, h_win = ro.h_end or opts.h_end, ro.h_win or opts.h_win
     local w, top = squeeze.build{ dx = dx, Re = ro.Re or opts.Re, Bn = opts.Bn, M = ro.M or opts.M, mode = "velocity",
                                   V = ro.V or 1, h_min = h_end, world = world_opts(ro) }
+    local A = area(w, dx)
     local num, den, n, sum_ratio = 0, 0, 0, 0
     local trace = open_trace(ro)
     squeeze_to(w, top, h_end, name, dx, function(t, h, V, F)
-      local ref = fref(h, ro.V or 1)
+      local ref = fref(h, ro.V or 1, A)
       if h <= h_win then
         num, den, n, sum_ratio = num + (F - ref) ^ 2, den + ref ^ 2, n + 1, sum_ratio + F / ref
       end
@@ -135,7 +145,7 @@ local function velocity_case(name, opts, fref)
     end, ro.max_steps or 100000)
     if trace then trace:close() end
     if n < 10 then error(string.format("%s, dx = %g: only %d steps in the window h in [%g, %g]", name, dx, n, h_end, h_win)) end
-    local r = result(w, math.sqrt(num / den), { samples = n, mean_ratio = sum_ratio / n })
+    local r = result(w, math.sqrt(num / den), { samples = n, mean_ratio = sum_ratio / n, area = A })
     w:close()
     return r
   end
@@ -151,21 +161,22 @@ local function load_case(name, opts)
     local h_end, h_win, F = ro.h_end or opts.h_end, ro.h_win or opts.h_win, opts.F
     local w, top = squeeze.build{ dx = dx, Re = opts.Re, Bn = 0, mode = "load", F = -F,
                                   h_min = h_end, world = world_opts(ro) }
+    local A = area(w, dx)
     local n, st, sy, stt, sty, sr = 0, 0, 0, 0, 0, 0
     local trace = open_trace(ro)
     squeeze_to(w, top, h_end, name, dx, function(t, h, V)
       if h <= h_win then
         local y = h ^ -5
         n, st, sy, stt, sty = n + 1, st + t, sy + y, stt + t * t, sty + t * y
-        sr = sr + (-V) / (F * h ^ 6)
+        sr = sr + (-V) / (F * h ^ 6 / A ^ 3)
       end
-      if trace then trace:write(string.format("%.6f %.6f %.6g %.6g %.6g\n", t, h, V, -F * h ^ 6, top.force)) end
+      if trace then trace:write(string.format("%.6f %.6f %.6g %.6g %.6g\n", t, h, V, -F * h ^ 6 / A ^ 3, top.force)) end
     end, ro.max_steps or 100000)
     if trace then trace:close() end
     if n < 10 then error(string.format("%s, dx = %g: only %d steps in the window h in [%g, %g]", name, dx, n, h_end, h_win)) end
     local beta = (n * sty - st * sy) / (n * stt - st * st)
-    local ratio = beta / (5 * F)
-    local r = result(w, math.abs(ratio - 1), { samples = n, mean_ratio = ratio, speed_ratio = sr / n,
+    local ratio = beta / (5 * F / A ^ 3)
+    local r = result(w, math.abs(ratio - 1), { samples = n, mean_ratio = ratio, speed_ratio = sr / n, area = A,
                                                t_virtual = (st - sy / beta * n) / n })
     w:close()
     return r
@@ -186,11 +197,12 @@ local function bingham_load_case(name, opts)
     local w, top = squeeze.build{ dx = dx, Re = opts.Re, Bn = Bn, M = ro.M or opts.M, mode = "load",
                                   F = function(t) return -F * math.min(1, t / ramp) end,
                                   h_min = (Bn / (2 * F)) ^ (1 / 3) - 0.05, world = world_opts(ro) }
+    local A = area(w, dx)
     local num, n, next_t, sr = 0, 0, t_win, 0
     local trace = open_trace(ro)
     squeeze_to(w, top, 0, name, dx, function(t, h, V, Ff)
       if t >= next_t then
-        local fth = M.bingham_force(h, math.max(-V, 0), 1, Bn)
+        local fth = M.bingham_force(h, math.max(-V, 0), 1, Bn, A)
         num, n, sr = num + ((fth - F) / F) ^ 2, n + 1, sr + fth / F
         next_t = next_t + 0.005
         if trace then trace:write(string.format("%.6f %.6f %.6g %.6g %.6g\n", t, h, V, Ff, fth)) end
@@ -200,7 +212,7 @@ local function bingham_load_case(name, opts)
     if trace then trace:close() end
     if n < 10 then error(string.format("%s, dx = %g: only %d samples in the window t in [%g, %g]", name, dx, n, t_win, t_end)) end
     local r = result(w, math.sqrt(num / n), { samples = n, mean_ratio = sr / n, h = top.position,
-                                              h_stop = (Bn / (2 * F)) ^ (1 / 3) })
+                                              h_stop = (Bn * A * A / (2 * F)) ^ (1 / 3), area = A })
     w:close()
     return r
   end
@@ -215,7 +227,7 @@ M.cases = {
     resolutions = { 1 / 20, 1 / 30, 1 / 40, 1 / 60 },
     quick = { 1 / 20, 1 / 30 },
     run = velocity_case("Newtonian squeeze V = 1", { Re = 0.1, Bn = 0, h_end = 0.35, h_win = 0.45 },
-      function(h, V) return M.newtonian_force(h, V, 1) end),
+      function(h, V, A) return M.newtonian_force(h, V, 1, A) end),
   },
   {
     name = "Newtonian squeeze F = 20",
@@ -232,7 +244,7 @@ M.cases = {
     resolutions = { 1 / 20, 1 / 30, 1 / 40, 1 / 60 },
     quick = { 1 / 20, 1 / 30 },
     run = velocity_case("Bingham squeeze Bn = 100 V = 1", { Re = 1, Bn = BN, M = 100, h_end = 0.35, h_win = 0.45 },
-      function(h, V) return M.bingham_force(h, V, 1, BN) end),
+      function(h, V, A) return M.bingham_force(h, V, 1, BN, A) end),
   },
   {
     name = "Bingham squeeze Bn = 100 F = 400",
