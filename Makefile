@@ -52,8 +52,9 @@ check:
 	$(MAKE) SANITIZE=1 OPT=-O1 all
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 sh tests/run.sh build-san
 
+# make bench [only=WORD,...|none] [quick=1]: see scripts/bench.sh
 bench: all $(B)/bench_render
-	@sh scripts/bench.sh $(B)
+	@sh scripts/bench.sh $(B) $(if $(only),only=$(only)) $(if $(quick),quick=$(quick))
 
 # the renderer benchmark (not a test, not built by `all`)
 $(B)/bench_render: tests/bench/bench_render.c $(B)/libsph.a | $(B)

@@ -10,14 +10,31 @@
 #     the Jacobi-PCG solvers (thousands of iterations per solve)),
 #     1 and 2 threads: ns per particle-step, solver iterations per step and the share of
 #     each phase of the step; writes out/bench/scaling.csv and scaling.png.
+#   - speed against error (scripts/bench_validation.lua): every validation case (modules
+#     sph.flows and sph.squeeze_validation) at each of its resolutions, BENCH_RUNS repeats,
+#     median wall time; the table goes to out/bench/validation.txt and validation.csv, the
+#     plot to out/bench/error_vs_time.png. Much the longest part (minutes: the finest
+#     resolutions); `only=WORD[,WORD]` runs the cases whose name contains a word,
+#     `only=none` skips them, `quick=1` takes the quick resolutions:
+#       make bench only=Newtonian        sh scripts/bench.sh build only=Bingham quick=1
 # Prints the tables and writes them to out/bench/bench.txt. About 20 s on an idle 2-core
 # machine for the first two, a few minutes for the scaling up to 1.2e5 particles;
 # threads = 2 slows down many times over when another program holds a core (every
 # step has hundreds of OpenMP fork/joins, several per pressure-solver iteration), so the
 # CPU time other programs took during the bench is recorded with the figures.
-#   sh scripts/bench.sh [BUILD_DIR]       BENCH_RUNS=5 sh scripts/bench.sh
+#   sh scripts/bench.sh [BUILD_DIR] [only=...] [quick=1]       BENCH_RUNS=5 sh scripts/bench.sh
 set -eu
 B=${1:-build}
+[ $# -gt 0 ] && shift
+only=${only:-}
+quick=${quick:-}
+for a in "$@"; do
+    case $a in
+        only=*) only=${a#only=} ;;
+        quick=*) quick=${a#quick=} ;;
+        *) echo "bench.sh: unknown argument '$a' (only=..., quick=1 expected)" >&2; exit 2 ;;
+    esac
+done
 top=$(cd "$(dirname "$0")/.." && pwd)
 cd "$top"
 runs=${BENCH_RUNS:-3}
@@ -79,6 +96,20 @@ section printf '\nrenderer, 100 000 particles (tests/bench/bench_render.c):\n'
 section "$B/bench_render" "$out"
 section printf '\nscaling of the step: squeeze Bn = 5, M = 800, Re = 1, V = -1, fixed dt = dx/40 (scripts/bench_scaling.lua):\n'
 section "$B/sph" scripts/bench_scaling.lua max_n="$max_n" out="$out"
+# the validation cases, printed row by row as they finish (minutes) and written by the
+# driver to out/bench/validation.txt; a failed run (an engine error) is printed as FAILED
+# and the driver exits 1 once its table, CSV and plot are written: the bench goes on and
+# fails at the end
+vstatus=0
+if [ "$only" != none ]; then
+    section printf '\nspeed against error, validation cases (scripts/bench_validation.lua), threads = 1:\n'
+    set -- runs="$runs" out="$out"
+    [ -n "$only" ] && set -- "$@" only="$only"
+    [ -n "$quick" ] && set -- "$@" quick="$quick"
+    rm -f "$out/validation.txt"
+    "$B/sph" scripts/bench_validation.lua "$@" || vstatus=$?
+    if [ -f "$out/validation.txt" ]; then cat "$out/validation.txt" >>"$tmp"; fi
+fi
 busy1=$(busy); up1=$(uptime_s); own_cpu; own1=$own
 others=$(awk -v b0="$busy0" -v b1="$busy1" -v o0="$own0" -v o1="$own1" -v u0="$up0" -v u1="$up1" \
     'BEGIN { x = ((b1 - b0) - (o1 - o0)) / (u1 - u0); printf "%.2f", x < 0 ? 0 : x }')
@@ -92,3 +123,7 @@ footer() {
 section footer
 cat "$tmp" >"$txt"
 echo "wrote $txt"
+if [ "$vstatus" -ne 0 ]; then
+    echo "bench.sh: validation runs FAILED (status $vstatus): see the table above" >&2
+    exit "$vstatus"
+fi

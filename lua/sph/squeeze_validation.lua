@@ -1,0 +1,258 @@
+-- Squeeze-flow validations against thin-film (lubrication) theory, in the validation
+-- interface shared with sph.flows: { cases = { case, ... } }, each case with name,
+-- error_name, resolutions, quick and run(dx, opts) -> { particles, steps, wall, p_iter,
+-- v_iter, error, t } (see scripts/bench_validation.lua); run also returns the figures each
+-- case reports (mean_ratio, ...).
+--
+-- The scene is the paper's sample (sph.squeeze.build: H = U = mu = 1, rho = Re, tau0 = Bn,
+-- m = M; 2a = h = 1 at the start, area A = 1 per unit depth; half sample with a symmetry
+-- plane at x = 0; forces are the whole sample's), squeezed down to h = 0.35. The comparison
+-- window is h in [0.35, 0.45], where a / h = 1 / (2 h^2) goes from 2.5 to 4.1: the late
+-- part of the squeeze, the thinnest film this engine reaches at every resolution (at
+-- dx = 1/20 a particle goes through a plate near h = 0.25; 7 particles span the gap at
+-- h = 0.35). It is not a >> h: lubrication leaves out corrections of relative order h / a
+-- (the free edge's bulge, the extensional stresses), 0.25-0.4 in the window. A film
+-- started as such (h0 = 0.5, half-width a0 = 2, a / h = 4 at the start) fails within 250
+-- steps at dx = 1/40 (a fluid particle goes through the lower plate, Re = 0.1 or 1), and
+-- with a0 = 1 at h = 0.31 (density error 1 % throughout).
+--
+-- The cases (measured figures in tests/lua/test_squeeze_validation.lua):
+--   1. Newtonian at V = 1, Re = 0.1 (Stokes flow, as lubrication assumes; at Re = 1
+--      inertia adds about 0.16 x lubrication to the force);
+--   2. Newtonian under a constant load F = 20 (Re = 1; the late plate speed is 0.04-0.15,
+--      so the flow is close to Stokes flow);
+--   3. Bingham, Bn = 100, M = 100 (M large enough: 1000 gives the same force at dx = 1/20),
+--      at V = 1, Re = 1;
+--   4. Bingham, Bn = 100 under F = 400 (ideal stop height (tau0 / (2 F))^(1/3) = 0.5).
+--
+-- References (PHYSICS.md, whole sample, A = 1):
+--   Newtonian, constant velocity V:  F = 8 mu V a^3 / h^3 = mu V / h^6;
+-- (A is taken from the particle count: see area below)
+--   Newtonian, constant load F:       -dh/dt = F h^6 / mu, so h^-5 = 5 F (t - t_v) / mu with
+--                                     a virtual time origin t_v (the early squeeze is not
+--                                     thin-film, so only the late slope is compared);
+--   Bingham:                          the thin-film Bingham solution (bingham_force below),
+--                                     whose plastic limit is F = 2 tau0 a^2 / h = tau0 / (2 h^3);
+--                                     under a load, its force at the run's own (h, V).
+local squeeze = require "sph.squeeze"
+
+local M = {}
+
+-- Thin-film Bingham squeeze of a sample of area A (default 1) at closing speed V: at
+-- every x the film carries the flux q = V x (half sample) as a Bingham plane Poiseuille
+-- flow under the pressure gradient G = -dp/dx. With phi = tau0 / tau_wall = 2 tau0 / (G h)
+-- in (0, 1) (the plug's share of the gap) the flux is q = (G h^3 / (12 mu)) (1 - 3 phi / 2
+-- + phi^3 / 2), i.e.
+--   V x = tau0 h^2 / (6 mu phi) (1 - 3 phi / 2 + phi^3 / 2),
+-- solved for phi by bisection (the right side falls from infinity to 0 on (0, 1)). The
+-- load, integrated by parts with p(a) = 0: F = 2 int_0^a p dx = 2 int_0^a x G(x) dx.
+-- tau0 > 0 (tau0 -> 0 gives 8 mu V a^3 / h^3); V -> 0 gives the plastic limit 2 tau0 a^2 / h. For
+-- large tau0 the first correction is F = tau0 / (2 h^3) (1 + (4 sqrt 2 / 5)
+-- sqrt(mu V / (tau0 h^3))) (A = 1), from 1 - phi ~ 2 sqrt(mu V x / tau0) / h.
+function M.bingham_force(h, V, mu, tau0, A)
+  A = A or 1
+  local a = A / (2 * h)
+  local function G(x)
+    if x <= 0 then return 2 * tau0 / h end
+    local lo, hi = 0, 1
+    for _ = 1, 60 do
+      local phi = 0.5 * (lo + hi)
+      local q = tau0 * h * h / (6 * mu * phi) * (1 - 1.5 * phi + 0.5 * phi ^ 3)
+      if q > V * x then lo = phi else hi = phi end
+    end
+    return 2 * tau0 / (h * 0.5 * (lo + hi))
+  end
+  -- composite Simpson on x G(x) (G - 2 tau0 / h grows like sqrt(x): Simpson's error is
+  -- then below 1e-5 relative with 400 intervals, checked against 1600)
+  local n = 400
+  local s = 0
+  for k = 0, n do
+    local x = a * k / n
+    local wgt = (k == 0 or k == n) and 1 or (k % 2 == 1 and 4 or 2)
+    s = s + wgt * x * G(x)
+  end
+  return 2 * s * a / (3 * n)
+end
+
+function M.newtonian_force(h, V, mu, A) return (mu or 1) * (V or 1) * (A or 1) ^ 3 / h ^ 6 end
+function M.plastic_force(h, tau0, A) return tau0 * (A or 1) ^ 2 / (2 * h ^ 3) end
+
+-- Steps w until the gap is at most h_end, calling sample(t, h, V, F) after every step
+-- (a sample returning true ends the run).
+-- Fails with a message on a non-finite plate state or when max_steps is exceeded.
+local function squeeze_to(w, top, h_end, name, dx, sample, max_steps)
+  while top.position > h_end do
+    w:step()
+    local h, F, V = top.position, top.force, top.velocity
+    if h ~= h or F ~= F or V ~= V or math.abs(F) == math.huge or math.abs(V) == math.huge then
+      error(string.format("%s, dx = %g: non-finite plate state (h = %g, V = %g, F = %g) at step %d, t = %g",
+        name, dx, h, V, F, w.steps, w.t))
+    end
+    if w.steps > max_steps then
+      error(string.format("%s, dx = %g: %d steps without reaching h = %g (h = %g at t = %g)",
+        name, dx, max_steps, h_end, h, w.t))
+    end
+    if sample(w.t, h, V, F) then return end
+  end
+end
+
+local function result(w, err, extra)
+  local s = w:stats()
+  local r = { particles = s.particles, steps = w.steps, wall = s.wall_time,
+              p_iter = s.solver_iterations_total / w.steps, v_iter = s.visc_iterations_total / w.steps,
+              error = err, t = w.t, peak_density_error = s.peak_density_error }
+  for k, v in pairs(extra or {}) do r[k] = v end
+  return r
+end
+
+-- The sample's area (whole sample, per unit depth) from its particle count: the fill puts
+-- one particle per dx^2, and when 0.5 / dx is not a whole number (dx = 1/25: 12.5) the
+-- half-width is 13 or 12 columns, not 0.5. The references depend on it as A^3 (Newtonian)
+-- and A^2 (plastic): with A = 1 taken for granted, dx = 1/25 came out 12 % off.
+local function area(w, dx)
+  return 2 * w:stats().fluid * dx * dx
+end
+
+-- sph.world options for a run: threads, plus any ro.world (studies: shifting, density_tol)
+local function world_opts(ro)
+  local t = { threads = ro.threads }
+  for k, v in pairs(ro.world or {}) do t[k] = v end
+  return t
+end
+
+local function open_trace(ro)
+  return ro.trace and assert(io.open(ro.trace, "w"))
+end
+
+-- Constant velocity V = 1: the plate force against fref(h) over h in [h_end, h_win]; the
+-- error is the relative L2 norm over every step in the window (the force's step-to-step
+-- noise, a few %, adds to it in quadrature).
+local function velocity_case(name, opts, fref)
+  return function(dx, ro)
+    ro = ro or {}
+    local h_end, h_win = ro.h_end or opts.h_end, ro.h_win or opts.h_win
+    local w, top = squeeze.build{ dx = dx, Re = ro.Re or opts.Re, Bn = opts.Bn, M = ro.M or opts.M, mode = "velocity",
+                                  V = ro.V or 1, h_min = h_end, world = world_opts(ro) }
+    local A = area(w, dx)
+    local num, den, n, sum_ratio = 0, 0, 0, 0
+    local trace = open_trace(ro)
+    squeeze_to(w, top, h_end, name, dx, function(t, h, V, F)
+      local ref = fref(h, ro.V or 1, A)
+      if h <= h_win then
+        num, den, n, sum_ratio = num + (F - ref) ^ 2, den + ref ^ 2, n + 1, sum_ratio + F / ref
+      end
+      if trace then trace:write(string.format("%.6f %.6f %.6g %.6g %.6g\n", t, h, V, F, ref)) end
+    end, ro.max_steps or 100000)
+    if trace then trace:close() end
+    if n < 10 then error(string.format("%s, dx = %g: only %d steps in the window h in [%g, %g]", name, dx, n, h_end, h_win)) end
+    local r = result(w, math.sqrt(num / den), { samples = n, mean_ratio = sum_ratio / n, area = A })
+    w:close()
+    return r
+  end
+end
+
+-- Constant load F: least-squares line h^-5 = alpha + beta t over the steps with h in
+-- [h_end, h_win]; the error is |beta / (5 F / mu) - 1| (the lubrication law's slope with a
+-- virtual time origin). Also returned: the mean over the window of the plate speed against
+-- the lubrication speed F h^6 / mu at the current h (speed_ratio).
+local function load_case(name, opts)
+  return function(dx, ro)
+    ro = ro or {}
+    local h_end, h_win, F = ro.h_end or opts.h_end, ro.h_win or opts.h_win, opts.F
+    local w, top = squeeze.build{ dx = dx, Re = opts.Re, Bn = 0, mode = "load", F = -F,
+                                  h_min = h_end, world = world_opts(ro) }
+    local A = area(w, dx)
+    local n, st, sy, stt, sty, sr = 0, 0, 0, 0, 0, 0
+    local trace = open_trace(ro)
+    squeeze_to(w, top, h_end, name, dx, function(t, h, V)
+      if h <= h_win then
+        local y = h ^ -5
+        n, st, sy, stt, sty = n + 1, st + t, sy + y, stt + t * t, sty + t * y
+        sr = sr + (-V) / (F * h ^ 6 / A ^ 3)
+      end
+      if trace then trace:write(string.format("%.6f %.6f %.6g %.6g %.6g\n", t, h, V, -F * h ^ 6 / A ^ 3, top.force)) end
+    end, ro.max_steps or 100000)
+    if trace then trace:close() end
+    if n < 10 then error(string.format("%s, dx = %g: only %d steps in the window h in [%g, %g]", name, dx, n, h_end, h_win)) end
+    local beta = (n * sty - st * sy) / (n * stt - st * st)
+    local ratio = beta / (5 * F / A ^ 3)
+    local r = result(w, math.abs(ratio - 1), { samples = n, mean_ratio = ratio, speed_ratio = sr / n, area = A,
+                                               t_virtual = (st - sy / beta * n) / n })
+    w:close()
+    return r
+  end
+end
+
+-- Bingham under a constant load F (applied over t_ramp, then constant), against the
+-- thin-film Bingham theory's force balance: at every sample of the window t in
+-- [t_win, t_end] (every 0.005 in t), the load the theory needs to close a film of the
+-- current h at the current plate speed, F_th(h, V), against the applied F; the error is
+-- the relative L2 of F_th - F over the samples. As the sample creeps towards the stop
+-- height h_stop = (tau0 / (2 F))^(1/3), F_th tends to the plastic limit, and the
+-- comparison stays well conditioned (the speed itself goes to zero).
+local function bingham_load_case(name, opts)
+  return function(dx, ro)
+    ro = ro or {}
+    local F, Bn, t_end, t_win, ramp = opts.F, opts.Bn, ro.t_end or opts.t_end, ro.t_win or opts.t_win, opts.t_ramp
+    local w, top = squeeze.build{ dx = dx, Re = opts.Re, Bn = Bn, M = ro.M or opts.M, mode = "load",
+                                  F = function(t) return -F * math.min(1, t / ramp) end,
+                                  h_min = (Bn / (2 * F)) ^ (1 / 3) - 0.05, world = world_opts(ro) }
+    local A = area(w, dx)
+    local num, n, next_t, sr = 0, 0, t_win, 0
+    local trace = open_trace(ro)
+    squeeze_to(w, top, 0, name, dx, function(t, h, V, Ff)
+      if t >= next_t then
+        local fth = M.bingham_force(h, math.max(-V, 0), 1, Bn, A)
+        num, n, sr = num + ((fth - F) / F) ^ 2, n + 1, sr + fth / F
+        next_t = next_t + 0.005
+        if trace then trace:write(string.format("%.6f %.6f %.6g %.6g %.6g\n", t, h, V, Ff, fth)) end
+      end
+      if t >= t_end then return true end
+    end, ro.max_steps or 100000)
+    if trace then trace:close() end
+    if n < 10 then error(string.format("%s, dx = %g: only %d samples in the window t in [%g, %g]", name, dx, n, t_win, t_end)) end
+    local r = result(w, math.sqrt(num / n), { samples = n, mean_ratio = sr / n, h = top.position,
+                                              h_stop = (Bn * A * A / (2 * F)) ^ (1 / 3), area = A })
+    w:close()
+    return r
+  end
+end
+
+local BN = 100
+
+M.cases = {
+  {
+    name = "Newtonian squeeze V = 1",
+    error_name = "relative L2 of the plate force against lubrication F = mu V / h^6 over h in [0.35, 0.45] (a/h 2.5-4.1), Re = 0.1",
+    resolutions = { 1 / 20, 1 / 30, 1 / 40, 1 / 60 },
+    quick = { 1 / 20, 1 / 30 },
+    run = velocity_case("Newtonian squeeze V = 1", { Re = 0.1, Bn = 0, h_end = 0.35, h_win = 0.45 },
+      function(h, V, A) return M.newtonian_force(h, V, 1, A) end),
+  },
+  {
+    name = "Newtonian squeeze F = 20",
+    error_name = "relative error of the slope of h^-5 against t (lubrication: 5 F / mu) over h in [0.35, 0.45], Re = 1",
+    -- 1/40 and 1/60 fail: a fluid particle goes through the upper plate near the sample's
+    -- edge (t = 0.51 and 0.32); 1/25 gives a third resolution that runs
+    resolutions = { 1 / 20, 1 / 25, 1 / 30, 1 / 40 },
+    quick = { 1 / 20, 1 / 30 },
+    run = load_case("Newtonian squeeze F = 20", { Re = 1, F = 20, h_end = 0.35, h_win = 0.45 }),
+  },
+  {
+    name = "Bingham squeeze Bn = 100 V = 1",
+    error_name = "relative L2 of the plate force against thin-film Bingham theory over h in [0.35, 0.45], M = 100, Re = 1",
+    resolutions = { 1 / 20, 1 / 30, 1 / 40, 1 / 60 },
+    quick = { 1 / 20, 1 / 30 },
+    run = velocity_case("Bingham squeeze Bn = 100 V = 1", { Re = 1, Bn = BN, M = 100, h_end = 0.35, h_win = 0.45 },
+      function(h, V, A) return M.bingham_force(h, V, 1, BN, A) end),
+  },
+  {
+    name = "Bingham squeeze Bn = 100 F = 400",
+    error_name = "relative L2 of the thin-film Bingham load at the current (h, V) against the applied F over t in [0.5, 1] (h_stop = 0.5), M = 100, Re = 1",
+    resolutions = { 1 / 20, 1 / 30, 1 / 40 },
+    quick = { 1 / 20, 1 / 30 },
+    run = bingham_load_case("Bingham squeeze Bn = 100 F = 400", { Re = 1, Bn = BN, M = 100, F = 400, t_ramp = 0.05, t_win = 0.5, t_end = 1 }),
+  },
+}
+
+return M

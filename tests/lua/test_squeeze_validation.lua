@@ -1,0 +1,122 @@
+-- Squeeze-flow validations (lua/sph/squeeze_validation.lua) at their quick resolutions
+-- (dx = 1/20 and 1/30; Bingham at 1/20 only; the full study is `make bench`): the errors against
+-- thin-film theory and their observed orders, with tolerances from the measured values
+-- written next to each reference. threads = 1 unless the runner says otherwise: a run on
+-- one thread is reproducible to the last digit, and the tolerances below are taken from
+-- one-thread runs (two threads change the summation order; the squeeze is chaotic at the
+-- percent level, see test_squeeze.lua). About 60 s of CPU in all (58 s user + 9 s system
+-- measured on a machine loaded 10-fold by other programs).
+local V = require "sph.squeeze_validation"
+local T = require "sph.test"
+local o = ... or {}
+local threads = o.threads or 1
+
+T.case("thin-film Bingham reference: Newtonian and plastic limits", function()
+  for _, h in ipairs{ 0.5, 0.35 } do
+    -- tau0 -> 0: lubrication F = mu V / h^6 (measured 9e-8 relative at tau0 = 1e-6)
+    local n = V.bingham_force(h, 1, 1, 1e-6) / V.newtonian_force(h, 1, 1) - 1
+    T.below(math.abs(n), 1e-6, string.format("Bingham film at tau0 = 1e-6 is Newtonian at h = %g", h))
+    -- tau0 -> infinity: plastic limit tau0 / (2 h^3) times 1 + (4 sqrt 2 / 5) sqrt(mu V /
+    -- (tau0 h^3)) (the first correction); the rest is of the order of the correction
+    -- squared: measured 7e-6 (h = 0.5) and 2e-5 (h = 0.35) at tau0 = 1e6
+    local tau0 = 1e6
+    local r = V.bingham_force(h, 1, 1, tau0) / V.plastic_force(h, tau0)
+    local c = 4 * math.sqrt(2) / 5 * math.sqrt(1 / (tau0 * h ^ 3))
+    T.below(math.abs(r - 1 - c), 1e-4, string.format("Bingham film at tau0 = 1e6: plastic limit and its first correction at h = %g", h))
+  end
+  -- Bn = 100 in the window: the viscous part is not small, 1.40 (h = 0.5) to 1.81 (0.35)
+  -- times the plastic limit
+  local r = V.bingham_force(0.4, 1, 1, 100) / V.plastic_force(0.4, 100)
+  print(string.format("# thin-film Bingham, Bn = 100, V = 1, h = 0.4: %.3f x the plastic limit tau0 / (2 h^3)", r))
+  T.close(r, 1.615, 0.005, "Bingham film at Bn = 100, h = 0.4: 1.615 x the plastic limit")
+end)
+
+-- runs a case at resolutions res (default: its quick ones); returns the results and the
+-- observed order between the first two
+local function study(c, res)
+  res = res or c.quick
+  local rs = {}
+  for k, dx in ipairs(res) do
+    local r = c.run(dx, { threads = threads })
+    rs[k] = r
+    print(string.format("# %s, dx = 1/%d: error %.4f (force or speed ratio %.4f), %d particles, %d steps, %.1f s, %.0f + %.0f solver iterations per step, peak density error %.4f",
+      c.name, math.floor(1 / dx + 0.5), r.error, r.mean_ratio, r.particles, r.steps, r.wall, r.p_iter, r.v_iter, r.peak_density_error))
+  end
+  if #res < 2 then return rs end
+  local order = math.log(rs[1].error / rs[2].error) / math.log(res[1] / res[2])
+  print(string.format("# %s: observed order %.2f (dx = 1/%d to 1/%d); error: %s", c.name, order,
+    math.floor(1 / res[1] + 0.5), math.floor(1 / res[2] + 0.5), c.error_name))
+  return rs, order
+end
+
+local cases = {}
+for _, c in ipairs(V.cases) do cases[c.name] = c end
+
+-- The comparisons are in the late squeeze of the paper's sample, h in [0.35, 0.45],
+-- a / h = 2.5 to 4.1: thin-film theory leaves out corrections of relative order h / a
+-- there (0.25 to 0.4), and none of the errors below is mostly discretisation error: they
+-- barely change from dx = 1/20 to 1/30 (orders 0.2-0.4) or 1/40 (see make bench). The
+-- tolerances are two-sided, so that a change of the engine that moves these figures
+-- either way is noticed and the figures here (and in the README) are updated.
+
+T.case("Newtonian squeeze at constant velocity against lubrication", function()
+  local rs, order = study(cases["Newtonian squeeze V = 1"])
+  -- measured (one thread, Re = 0.1): errors 0.3223 (dx = 1/20) and 0.2779 (1/30), the
+  -- force 0.68 and 0.72 x lubrication mu V / h^6, order 0.37. (At Re = 1 the force is
+  -- 0.84 x lubrication at dx = 1/20, the same in test_squeeze.lua at 1/40: inertia adds
+  -- about 0.16; V = 0.1 at Re = 1 gives the same run as V = 1 at Re = 0.1, to the digit.)
+  -- Tolerances: the squeeze is chaotic at the percent level (a change of round-off moves
+  -- mean forces by up to 3 %, test_squeeze.lua): 0.03 on each error, 0.5 on the order.
+  T.close(rs[1].error, 0.3223, 0.03, "Newtonian squeeze V = 1, dx = 1/20: error within 0.03 of 0.322")
+  T.close(rs[2].error, 0.2779, 0.03, "Newtonian squeeze V = 1, dx = 1/30: error within 0.03 of 0.278")
+  T.close(order, 0.37, 0.5, "Newtonian squeeze V = 1: observed order within 0.5 of 0.37")
+  T.below(rs[2].peak_density_error, 0.03, "Newtonian squeeze V = 1, dx = 1/30: peak density error under 3 %")
+end)
+
+T.case("Newtonian squeeze under a constant load against lubrication", function()
+  local rs, order = study(cases["Newtonian squeeze F = 20"])
+  -- measured (one thread, Re = 1; late plate speeds 0.04-0.15, so close to Stokes flow):
+  -- the slope of h^-5 against t is 1.639 (dx = 1/20) and 1.535 (1/30) x lubrication's 5 F /
+  -- mu, errors 0.639 and 0.535, order 0.44: the plate closes 1.5-1.6 times faster than
+  -- lubrication says, i.e. the sample carries about 0.65 x the lubrication force at its
+  -- speed, as in the constant-velocity case at Re = 0.1 (0.68-0.72). dx = 1/40 fails near
+  -- h = 0.43 (a fluid particle goes through the upper plate at t = 0.51). Tolerances 0.06
+  -- on each error (a loaded run integrates the force's noise into h), 0.6 on the order.
+  T.close(rs[1].error, 0.639, 0.06, "Newtonian squeeze F = 20, dx = 1/20: error within 0.06 of 0.639")
+  T.close(rs[2].error, 0.535, 0.06, "Newtonian squeeze F = 20, dx = 1/30: error within 0.06 of 0.535")
+  T.close(order, 0.44, 0.6, "Newtonian squeeze F = 20: observed order within 0.6 of 0.44")
+end)
+
+T.case("Bingham squeeze, Bn = 100, at constant velocity against thin-film Bingham theory", function()
+  -- dx = 1/20 only here (CPU budget); dx = 1/30 and 1/40 are in make bench
+  local rs = study(cases["Bingham squeeze Bn = 100 V = 1"], { 1 / 20 })
+  -- measured (one thread, M = 100, Re = 1): errors 0.0731 (dx = 1/20), 0.0686 (1/30) and
+  -- 0.0588 (1/40), orders 0.16 and 0.53; the force 1.07 x the thin-film Bingham load
+  -- (itself 1.40-1.81 x the plastic limit tau0 / (2 h^3) in the window: at Bn = 100 and
+  -- V = 1 the viscous part is not small). M = 1000 gives 0.070 at 1/20 (the
+  -- regularisation does not matter) but stops at 1/30 (the force explodes near h = 0.42:
+  -- time step below its minimum), and M = 100 stops the same way at 1/25 (h = 0.37).
+  -- Tolerance 0.02 on the error.
+  T.close(rs[1].error, 0.0731, 0.02, "Bingham squeeze V = 1, dx = 1/20: error within 0.02 of 0.073")
+  T.close(rs[1].mean_ratio, 1.073, 0.03, "Bingham squeeze V = 1, dx = 1/20: mean force within 0.03 of 1.073 x thin-film theory")
+end)
+
+T.case("Bingham squeeze, Bn = 100, under a constant load: the stop height", function()
+  local c = cases["Bingham squeeze Bn = 100 F = 400"]
+  -- the case runs to t = 1 (window t in [0.5, 1]); here to t = 0.7 (CPU budget)
+  local r = c.run(1 / 20, { threads = threads, t_end = 0.7, t_win = 0.5 })
+  print(string.format("# %s, dx = 1/20, t in [0.5, 0.7]: error %.4f (thin-film load at the current h and V: %.3f x F), h(0.7) = %.4f against the ideal stop height %.4f, %d steps, %.1f s",
+    c.name, r.error, r.mean_ratio, r.h, r.h_stop, r.steps, r.wall))
+  -- measured (one thread, M = 100, Re = 1, dx = 1/20): the sample goes through the ideal
+  -- Bingham stop height (tau0 / (2 F))^(1/3) = 0.5: h(0.7) = 0.399, h(1) = 0.377, still
+  -- closing at V = 0.06, where thin-film theory needs 2.1-2.3 x the load (error 1.12 over
+  -- t in [0.5, 0.7]; over [0.5, 1] 1.34, 1.10 and 0.88 at dx = 1/20, 1/30 and 1/40, orders
+  -- 0.48 and 0.77: it shrinks with dx, slowly): at slow closing speeds the
+  -- sample carries far less than its yield stress says (the constant-velocity case at
+  -- V = 0.1 falls to 0.2 x the thin-film load at h = 0.46, against 1.07 at V = 1). A wrong
+  -- result, kept here so that a fix shows: tolerance 0.15 on the error, 0.02 on h(0.7).
+  T.close(r.error, 1.117, 0.15, "Bingham squeeze F = 400, dx = 1/20: error within 0.15 of 1.12")
+  T.close(r.h, 0.399, 0.02, "Bingham squeeze F = 400, dx = 1/20: h(0.7) within 0.02 of 0.399 (ideal stop 0.5)")
+end)
+
+T.done()
