@@ -8,8 +8,9 @@
 --     [warmup=5] [runs=3] [threads=1] [tol=1e-6] [Bn=5] [M=800] [Re=1]
 -- Columns: rows of the pressure and viscous systems; for each system: setup ms per step,
 -- solves per step, CG iterations per solve, ms per solve (iterations only), ns per row and
--- solve (setup included, the cost that counts); the whole step in us per particle; the max
--- density error at the end.
+-- solve (setup included, the cost that counts); the whole step in us per particle (wall
+-- clock, and "cpu": the process's CPU time, os.clock, less disturbed by other programs on a
+-- shared machine when threads = 1); the max density error at the end.
 local squeeze = require "sph.squeeze"
 local o = ... or {}
 local dxs = o.dx and { o.dx } or { 1 / 40, 1 / 80, 1 / 160 }
@@ -29,12 +30,12 @@ local function fraction(dx)
   return string.format("%.4g", dx)
 end
 
-print(string.format("%-6s %-6s %8s %8s | %7s %5s %6s %8s %8s | %7s %5s %6s %8s %8s | %8s %8s",
+print(string.format("%-6s %-6s %8s %8s | %7s %5s %6s %8s %8s | %7s %5s %6s %8s %8s | %8s %8s %8s",
   "dx", "solver", "p rows", "v rows", "p setup", "solv", "it", "ms/solve", "ns/row", "v setup", "solv", "it",
-  "ms/solve", "ns/row", "us/p-st", "rho err"))
+  "ms/solve", "ns/row", "us/p-st", "cpu", "rho err"))
 for _, dx in ipairs(dxs) do
   for _, solver in ipairs(solvers) do
-    local r = { psu = {}, pso = {}, vsu = {}, vso = {}, step = {} }
+    local r = { psu = {}, pso = {}, vsu = {}, vso = {}, step = {}, cpu = {} }
     local last
     for _ = 1, runs do
       local w = squeeze.build{ dx = dx, Re = o.Re or 1, Bn = o.Bn or 5, M = o.M or 800, mode = "velocity",
@@ -42,8 +43,11 @@ for _, dx in ipairs(dxs) do
                                                 tol = o.tol } }
       for _ = 1, warmup do w:step() end
       local s0 = w:stats()
+      local c0 = os.clock()
       for _ = 1, steps do w:step() end
+      local c1 = os.clock()
       local s1 = w:stats()
+      r.cpu[#r.cpu + 1] = c1 - c0
       local function d(k) return s1[k] - s0[k] end
       r.psu[#r.psu + 1] = d "pressure_setup_time"
       r.pso[#r.pso + 1] = d "pressure_solve_time"
@@ -57,11 +61,11 @@ for _, dx in ipairs(dxs) do
     end
     local ps, vs = last.ps, last.vs
     local psu, pso, vsu, vso = median(r.psu), median(r.pso), median(r.vsu), median(r.vso)
-    print(string.format("%-6s %-6s %8d %8d | %7.2f %5.2f %6.1f %8.3f %8.1f | %7.2f %5.2f %6.1f %8.3f %8.1f | %8.2f %8.2g",
+    print(string.format("%-6s %-6s %8d %8d | %7.2f %5.2f %6.1f %8.3f %8.1f | %7.2f %5.2f %6.1f %8.3f %8.1f | %8.2f %8.2f %8.2g",
       fraction(dx), solver, last.prows, last.vrows,
       1e3 * psu / steps, ps / steps, last.pit / ps, 1e3 * pso / ps, 1e9 * (psu + pso) / (ps * last.prows),
       1e3 * vsu / steps, vs / steps, last.vit / vs, 1e3 * vso / vs, 1e9 * (vsu + vso) / (vs * last.vrows),
-      1e6 * median(r.step) / (steps * last.part), last.err))
+      1e6 * median(r.step) / (steps * last.part), 1e6 * median(r.cpu) / (steps * last.part), last.err))
     io.stdout:flush()
   end
 end
