@@ -43,10 +43,48 @@ typedef struct sph_solve_result {
     int converged;
 } sph_solve_result;
 
+/* Algebraic multigrid (amg.c): smoothed aggregation, used as a symmetric cycle
+ * preconditioner inside CG. Level 0 is the caller's matrix; each level keeps its Galerkin
+ * operator, the prolongation P to it from the level above and the restriction R = P^T. */
+#define SPH_AMG_MAX_LEVELS 20
+typedef struct sph_amg_level {
+    sph_csr A;          /* operator (level 0: the fine matrix with duplicate columns merged) */
+    sph_csr P, R;       /* to the next level: n x nc and nc x n (unused on the coarsest) */
+    double *x, *b, *r, *t; /* work vectors, n each */
+    int vcap;
+} sph_amg_level;
+
+typedef struct sph_amg {
+    int levels;         /* 0: not set up */
+    sph_amg_level lev[SPH_AMG_MAX_LEVELS];
+    double *chol;       /* dense Cholesky factor of the coarsest operator (NULL: sweeps) */
+    int chol_n;
+    long chol_cap;
+    int *agg, *mark, *sstart, *sj; /* setup scratch: aggregates, markers, strong graph */
+    int icap;
+    long sjcap;
+    sph_csr AP;         /* setup scratch: A P */
+    int *pmark;         /* setup scratch of the sparse products: a marker and an */
+    double *pacc;       /* accumulator per thread                                */
+    long pcap;
+    /* knobs (0: default) */
+    double theta;       /* strength of connection |a_ij| >= theta sqrt(a_ii a_jj); 0.08  */
+    int sweeps;         /* Gauss-Seidel sweeps before and after the coarse correction; 1 */
+    int coarse_max;     /* stop coarsening at this many rows; 100                        */
+    int wcycle_from;    /* levels from this one down visit the next twice (W-cycle); 1   */
+    /* what the last setup built */
+    int fine_n;
+    long nnz_total;     /* sum of nonzeros over all levels (operator complexity x fine nnz) */
+} sph_amg;
+
 /* Scratch and statistics of the Krylov solver. */
 typedef struct sph_solver {
     int cap;
     double *r, *z, *q, *d;
+    sph_amg amg;
+    const sph_csr *amg_for; /* the matrix the AMG hierarchy was set up for (NULL: Jacobi) */
+    double setup_time, solve_time; /* seconds, accumulated */
+    long solves;                   /* sph_solver_pcg calls on a non-empty system */
 } sph_solver;
 
 struct sph_world {
@@ -187,8 +225,23 @@ void sph_csr_free(sph_csr *a);
 void sph_csr_matvec(const sph_csr *a, const double *x, double *y, int threads);
 int sph_solver_reserve(sph_solver *s, int n);
 void sph_solver_free(sph_solver *s);
-/* Jacobi-preconditioned conjugate gradients for SPD a: x holds the initial guess. */
+/* Choose the preconditioner for the solves on matrix a that follow (until the next setup):
+ * SPH_SOLVER_AMG builds the multigrid hierarchy of a (its values and structure now; a later
+ * change of a's values keeps the hierarchy, which stays a valid SPD preconditioner);
+ * SPH_SOLVER_JACOBI drops it. 0, or -1 when out of memory or the coarse operator is not
+ * positive definite (then the solves fall back to Jacobi). */
+int sph_solver_setup(sph_solver *s, const sph_csr *a, sph_linear_solver kind, int threads);
+/* Preconditioned conjugate gradients for SPD a: x holds the initial guess. The
+ * preconditioner is the AMG V-cycle when the last sph_solver_setup was for a with AMG,
+ * Jacobi otherwise. */
 sph_solve_result sph_solver_pcg(sph_solver *s, const sph_csr *a, const double *b, double *x,
                                 double tol, int max_iter, int threads);
+
+/* amg.c */
+int sph_amg_setup(sph_amg *g, const sph_csr *a, int threads);
+/* z = one symmetric multigrid cycle applied to r (from z = 0); a is the fine matrix (values may
+ * differ from those at setup, same structure and size). */
+void sph_amg_apply(sph_amg *g, const sph_csr *a, const double *r, double *z, int threads);
+void sph_amg_free(sph_amg *g);
 
 #endif

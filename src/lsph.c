@@ -144,7 +144,7 @@ static int l_world(lua_State *L) {
     static const char *const keys[] = {"dx", "h", "rho", "gravity", "viscosity", "shifting",
                                        "cfl", "cvisc", "cforce", "dt_max", "periodic", "symmetry",
                                        "threads", "tol", "max_iter", "surface", "density_relax",
-                                       "density_tol", "density_passes", 0};
+                                       "density_tol", "density_passes", "solver", 0};
     luaL_checktype(L, 1, LUA_TTABLE);
     sph_lua_opt_only(L, 1, "world", keys);
     sph_params p;
@@ -186,6 +186,14 @@ static int l_world(lua_State *L) {
         if (t != LUA_TSTRING || (strcmp(v, "explicit") && strcmp(v, "implicit")))
             luaL_error(L, "bad argument to 'world' (viscosity: \"implicit\" or \"explicit\" expected)");
         p.viscosity = strcmp(v, "implicit") ? SPH_VISC_EXPLICIT : SPH_VISC_IMPLICIT;
+    }
+    lua_pop(L, 1);
+    t = lua_getfield(L, 1, "solver");
+    if (t != LUA_TNIL) {
+        const char *v = lua_tostring(L, -1);
+        if (t != LUA_TSTRING || (strcmp(v, "amg") && strcmp(v, "jacobi")))
+            luaL_error(L, "bad argument to 'world' (solver: \"amg\" or \"jacobi\" expected)");
+        p.solver = strcmp(v, "amg") ? SPH_SOLVER_JACOBI : SPH_SOLVER_AMG;
     }
     lua_pop(L, 1);
     t = lua_getfield(L, 1, "periodic");
@@ -422,7 +430,7 @@ static int w_stats(lua_State *L) {
     lworld *lw = check_world(L, 1);
     sph_stats s;
     sph_world_stats(lw->w, &s);
-    lua_createtable(L, 0, 24);
+    lua_createtable(L, 0, 30);
 #define SETI(name, v) (lua_pushinteger(L, (lua_Integer)(v)), lua_setfield(L, -2, name))
 #define SETN(name, v) (lua_pushnumber(L, (v)), lua_setfield(L, -2, name))
     SETI("particles", s.particles);
@@ -446,6 +454,12 @@ static int w_stats(lua_State *L) {
     SETI("yielded", s.yielded);
     SETN("neighbours", s.neighbours_mean);
     SETN("wall_time", s.wall_time);
+    SETN("visc_setup_time", s.visc_setup_time);
+    SETN("visc_solve_time", s.visc_solve_time);
+    SETN("pressure_setup_time", s.pressure_setup_time);
+    SETN("pressure_solve_time", s.pressure_solve_time);
+    SETI("visc_solves", s.visc_solves);
+    SETI("pressure_solves", s.pressure_solves);
     SETN("t", sph_world_time(lw->w));
     SETN("dt", sph_world_dt(lw->w));
     SETI("steps", sph_world_steps(lw->w));

@@ -286,6 +286,9 @@ int sph_pressure_solve(sph_world *w, double dt) {
 
     if (pin >= 0) make_compatible(w, w->m[pin] * source_div(w, pin) / (rho0 * dt));
 
+    if (sph_solver_setup(&w->solver, A, w->par.solver, threads))
+        return sph_world_fail(w, "pressure solver: multigrid setup failed at step %ld (t = %g, %d unknowns): "
+                              "out of memory or a coarse operator not positive definite", w->steps, w->t, nrows);
     double tol = w->par.tol;
     int iters = 0;
     sph_solve_result res = sph_solver_pcg(&w->solver, A, w->b, w->sol, tol, w->par.max_iter, threads);

@@ -34,6 +34,9 @@ double sph_rheology_eta(const sph_material *mat, double gammadot);
 const char *sph_rheology_check(const sph_material *mat);
 
 typedef enum { SPH_VISC_EXPLICIT = 0, SPH_VISC_IMPLICIT = 1 } sph_viscosity;
+/* Preconditioner of the CG solves (pressure, density correction, implicit viscosity):
+ * algebraic multigrid (the default) or Jacobi. */
+typedef enum { SPH_SOLVER_JACOBI = 0, SPH_SOLVER_AMG = 1 } sph_linear_solver;
 
 typedef struct sph_params {
     double dx;             /* initial particle spacing (> 0)                       */
@@ -53,6 +56,7 @@ typedef struct sph_params {
     double sym_at[2];
     int threads;           /* 0: all cores                                         */
     double tol;            /* pressure solver: relative residual                   */
+    sph_linear_solver solver; /* CG preconditioner: SPH_SOLVER_AMG (default) or JACOBI */
     int max_iter;          /* pressure solver: iteration limit                     */
     double surface_div;    /* free surface where div r < surface_div (2D: 2 full)  */
     double density_relax;  /* fraction of the density error removed each step by the
@@ -148,6 +152,11 @@ typedef struct sph_stats {
      * wall_time); names and order from sph_phase_names(). */
     double phase_time[SPH_PHASES];
     long steps;               /* steps taken (the phases' divisor)        */
+    /* seconds spent so far in the linear solver: preconditioner setup and CG iterations,
+     * for the implicit viscous solves and for the pressure ones (pressure, loaded-plate
+     * sensitivities, density correction) */
+    double visc_setup_time, visc_solve_time, pressure_setup_time, pressure_solve_time;
+    long visc_solves, pressure_solves; /* solves so far (each u or v component counts) */
 } sph_stats;
 
 /* The phases of sph_world_step timed in sph_stats.phase_time, NULL-terminated:

@@ -243,6 +243,11 @@ int sph_viscous_implicit(sph_world *w, double dt) {
     double resid = 0.0;
     for (int comp = 0; comp < 2; comp++) {
         visc_assemble(w, dt, comp);
+        /* one multigrid setup for both components (their matrices differ only in the
+         * entries of mirror images, and the hierarchy stays a valid preconditioner) */
+        if (comp == 0 && sph_solver_setup(&w->solver, A, w->par.solver, w->threads))
+            return sph_world_fail(w, "viscous solver: multigrid setup failed at step %ld (t = %g, %d unknowns): "
+                                  "out of memory or a coarse operator not positive definite", w->steps, w->t, nrows);
         sph_solve_result res =
             sph_solver_pcg(&w->solver, A, w->vb, w->vsol, w->par.tol, w->par.max_iter, w->threads);
         if (!res.converged)

@@ -21,6 +21,7 @@ void sph_params_default(sph_params *p) {
     p->cvisc = 0.125;
     p->cforce = 0.25;
     p->tol = 1e-6;
+    p->solver = SPH_SOLVER_AMG;
     p->max_iter = 5000;
     p->surface_div = 1.5;
     p->density_tol = 0.005;
@@ -45,7 +46,8 @@ static const char *check_params(const sph_params *p) {
         "cfl must be in (0, 1]", "periodic range must have lo < hi",
         "an axis cannot be both periodic and a symmetry plane", "tol must be in (0, 1)",
         "max_iter must be positive", "gravity must be finite", "density_relax must be in [0, 1]",
-        "shifting must be >= 0", "density_tol must be in [0, 1)", "density_passes must be in [1, 10]"};
+        "shifting must be >= 0", "density_tol must be in [0, 1)", "density_passes must be in [1, 10]",
+        "solver must be SPH_SOLVER_AMG or SPH_SOLVER_JACOBI"};
     if (!(p->dx > 0 && isfinite(p->dx))) return bad[0];
     if (!(p->h >= 0 && isfinite(p->h))) return bad[1];
     if (!(p->rho0 > 0 && isfinite(p->rho0))) return bad[2];
@@ -61,6 +63,7 @@ static const char *check_params(const sph_params *p) {
     if (!(p->shifting >= 0)) return bad[10];
     if (!(p->density_tol >= 0 && p->density_tol < 1)) return bad[11];
     if (!(p->density_passes >= 1 && p->density_passes <= 10)) return bad[12];
+    if (p->solver != SPH_SOLVER_AMG && p->solver != SPH_SOLVER_JACOBI) return bad[13];
     return 0;
 }
 
@@ -358,12 +361,20 @@ int sph_world_step(sph_world *w, double dt) {
     sph_lap(w, SPH_PHASE_NEIGHBOURS);
     sph_viscous_rheology(w);
     sph_lap(w, SPH_PHASE_RHEOLOGY);
+    /* the solver's clocks, split between the viscous and the pressure solves */
+    double su0 = w->solver.setup_time, so0 = w->solver.solve_time;
+    long ns0 = w->solver.solves;
     if (w->par.viscosity == SPH_VISC_IMPLICIT) {
         if (sph_viscous_implicit(w, dt)) return -1;
     } else {
         sph_viscous_explicit(w, dt);
     }
     sph_lap(w, SPH_PHASE_VISC_ASSEMBLY); /* the plates' viscous forces */
+    double su1 = w->solver.setup_time, so1 = w->solver.solve_time;
+    w->st.visc_setup_time += su1 - su0;
+    w->st.visc_solve_time += so1 - so0;
+    long ns1 = w->solver.solves;
+    w->st.visc_solves += ns1 - ns0;
     if (sph_pressure_solve(w, dt)) return -1;
     for (int k = 0; k < w->nplates; k++)
         if (w->plates[k].mode == SPH_PLATE_LOAD) w->plates[k].vel = w->plates[k].vel_new;
@@ -371,6 +382,9 @@ int sph_world_step(sph_world *w, double dt) {
     sph_pressure_correct(w, dt);
     if (sph_density_correct(w)) return -1;
     sph_lap(w, SPH_PHASE_CORRECTION);
+    w->st.pressure_setup_time += w->solver.setup_time - su1;
+    w->st.pressure_solve_time += w->solver.solve_time - so1;
+    w->st.pressure_solves += w->solver.solves - ns1;
     if (w->par.shifting > 0) sph_shifting_apply(w, dt);
     sph_lap(w, SPH_PHASE_SHIFTING);
     for (int k = 0; k < w->nplates; k++) sph_plate_move(w, k, 0.5 * dt * (vold[k] + w->plates[k].vel));
