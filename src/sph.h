@@ -62,7 +62,7 @@ typedef struct sph_params {
     double density_relax;  /* fraction of the density error removed each step by the
                               density correction (pressure.c); 1 by default           */
     int density_passes;    /* density corrections per step at most, while the
-                              error exceeds density_tol; default 8                  */
+                              error exceeds density_tol; default 2                  */
     double density_tol;    /* dt shrinks while the max density error exceeds this
                               (0: no control); default 0.005                        */
 } sph_params;

@@ -26,7 +26,7 @@ void sph_params_default(sph_params *p) {
     p->surface_div = 1.5;
     p->density_tol = 0.005;
     p->density_relax = 1.0;
-    p->density_passes = 8;
+    p->density_passes = 2;
 }
 
 int sph_world_fail(sph_world *w, const char *fmt, ...) {
