@@ -312,12 +312,18 @@ static int prolongation(sph_amg *g, const sph_csr *a, sph_csr *P, int nc) {
     return 0;
 }
 
-/* In-place dense Cholesky of the n x n matrix c (row-major, lower triangle used). */
+/* In-place dense Cholesky of the n x n matrix c (row-major, lower triangle used). A pivot
+ * that falls to round-off of its diagonal entry (a singular coarse operator: a cluster of
+ * particles with no free-surface neighbour, as the drops a Re = 1000 squeeze throws off,
+ * whose pressure is defined up to a constant) is replaced by that diagonal entry: the
+ * factor is then of a nearby positive definite matrix, still a valid preconditioner. Only a
+ * non-positive or non-finite diagonal entry is an error. */
 static int cholesky(double *c, int n) {
     for (int j = 0; j < n; j++) {
-        double d = c[(size_t)j * n + j];
+        double d = c[(size_t)j * n + j], ajj = d;
+        if (!(ajj > 0.0) || !isfinite(ajj)) return -1;
         for (int k = 0; k < j; k++) d -= c[(size_t)j * n + k] * c[(size_t)j * n + k];
-        if (!(d > 0.0)) return -1;
+        if (!(d > 1e-10 * ajj)) d = ajj;
         d = sqrt(d);
         c[(size_t)j * n + j] = d;
         for (int i = j + 1; i < n; i++) {
