@@ -17,18 +17,9 @@ local dxs = o.dx and { o.dx } or { 1 / 40, 1 / 80, 1 / 160 }
 local solvers = (o.solver == nil or o.solver == "both") and { "jacobi", "amg" } or { o.solver }
 local steps, warmup, runs = math.floor(o.steps or 20), math.floor(o.warmup or 5), math.floor(o.runs or 3)
 
-local function median(t)
-  local s = table.move(t, 1, #t, 1, {})
-  table.sort(s)
-  local n = #s
-  return n % 2 == 1 and s[(n + 1) // 2] or 0.5 * (s[n // 2] + s[n // 2 + 1])
-end
+local median = require("sph.bench").median
 
-local function fraction(dx)
-  local k = 1 / dx
-  if math.abs(k - math.floor(k + 0.5)) < 1e-9 then return string.format("1/%d", math.floor(k + 0.5)) end
-  return string.format("%.4g", dx)
-end
+local fraction = require("sph.bench").fraction
 
 print(string.format("%-6s %-6s %8s %8s | %7s %5s %6s %8s %8s | %7s %5s %6s %8s %8s | %8s %8s %8s",
   "dx", "solver", "p rows", "v rows", "p setup", "solv", "it", "ms/solve", "ns/row", "v setup", "solv", "it",

@@ -33,12 +33,7 @@ for _, c in ipairs(cases) do
   c.rate, c.cost, c.iters = {}, {}, 0
 end
 
-local function median(t)
-  local s = table.move(t, 1, #t, 1, {})
-  table.sort(s)
-  local n = #s
-  return n % 2 == 1 and s[(n + 1) // 2] or 0.5 * (s[n // 2] + s[n // 2 + 1])
-end
+local median = require("sph.bench").median
 
 local function one_run(c)
   local w = squeeze.build{ dx = c.dx, Re = 10, Bn = 0.5, M = 100, mode = "velocity", V = 1,
@@ -68,11 +63,7 @@ for r = 1, runs do
   for _, c in ipairs(cases) do one_run(c) end
 end
 
-local function fraction(dx)
-  local k = 1 / dx
-  if math.abs(k - math.floor(k + 0.5)) < 1e-9 then return string.format("1/%d", math.floor(k + 0.5)) end
-  return string.format("%.4g", dx)
-end
+local fraction = require("sph.bench").fraction
 
 print(string.format("%-8s %6s %7s %9s %6s %9s %12s %10s %7s", "case", "dx", "threads", "particles",
   "steps", "steps/s", "us/part-step", "CG it/step", "spread"))

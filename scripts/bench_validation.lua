@@ -53,18 +53,9 @@ local function selected(name)
   return false
 end
 
-local function median(t)
-  local s = table.move(t, 1, #t, 1, {})
-  table.sort(s)
-  local n = #s
-  return n % 2 == 1 and s[(n + 1) // 2] or 0.5 * (s[n // 2] + s[n // 2 + 1])
-end
+local median = require("sph.bench").median
 
-local function fraction(dx)
-  local k = 1 / dx
-  if math.abs(k - math.floor(k + 0.5)) < 1e-6 then return string.format("1/%d", math.floor(k + 0.5)) end
-  return string.format("%.4g", dx)
-end
+local fraction = require("sph.bench").fraction
 
 -- the cases, module by module
 local cases = {}

@@ -10,7 +10,11 @@
  * lattice stretched by the squeeze's extension stays uniform in concentration (grad C = 0)
  * while its columns part: at h = 0.63 (Newtonian, Re = 1, dx = 1/40) a void opened on the
  * mid-plane, 20 particles inside it were taken for free surface, the plate force fell from
- * 16 to 10 and the max density error reached 8 %; with it, 0.86 % at worst to h = 0.34. */
+ * 16 to 10 and the max density error reached 8 %; with it, 0.86 % at worst to h = 0.34.
+ * Not here: a minimum-distance push (pairs closer than dx/2 parted), tried against four
+ * free-surface particles that had met within 0.01 dx at a contact line (Re = 0.01, where
+ * p = 0 and grad W(0) = 0 never part them); it put a particle through the lower plate at the
+ * contact line of the Newtonian squeeze (Re = 1, t = 0.66). */
 #include "internal.h"
 #include "kernel.h"
 
@@ -32,7 +36,7 @@ void sph_shifting_apply(sph_world *w, double dt) {
     double D = fmin(A * h * umax * dt, 0.25 * h * h), cap = 0.1 * h;
     if (D <= 0) return;
     /* anti-clustering (Lind et al. 2012): pairs closer than dx count more, R = 0.2, n = 4 */
-    double wdx = 1.0 / sph_kernel_value(w->dx, h), R = 0.2, dmin = 0.5 * w->dx;
+    double wdx = 1.0 / sph_kernel_value(w->dx, h), R = 0.2;
     /* V_j = m_j / rho_j with the density of now (the step has changed it since the
      * neighbour build) */
     int nt = n + w->ng;
@@ -72,24 +76,6 @@ void sph_shifting_apply(sph_world *w, double dt) {
         if (s > cap) {
             sx *= cap / s;
             sy *= cap / s;
-        }
-        /* Minimum distance: pairs closer than dmin are pushed apart to dmin (half each; the
-         * whole way from a wall), whatever the surface. Neither the pressure (p = 0 on the
-         * free surface) nor grad C (grad W vanishes as r -> 0) parts two particles that
-         * meet on the free surface: measured, Newtonian squeeze at Re = 0.01, four
-         * particles within 0.01 dx of each other at the lower contact line by t = 0.39. */
-        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
-            int j = w->nb_j[k];
-            double ddx = w->x[i] - w->x[j], ddy = w->y[i] - w->y[j], r2 = ddx * ddx + ddy * ddy;
-            if (r2 >= dmin * dmin) continue;
-            double r = sqrt(r2), push = (dmin - r) * (w->kind[j] == SPH_FLUID ? 0.5 : 1.0);
-            if (r > 1e-9 * dmin) {
-                sx += push * ddx / r;
-                sy += push * ddy / r;
-            } else { /* coincident: part them along the line of their ids */
-                double sg = w->id[i] < w->id[w->src[j]] ? -1.0 : 1.0;
-                sx += sg * push;
-            }
         }
         w->xs[i] = sx;
         w->ys[i] = sy;
