@@ -174,11 +174,17 @@ static int spgemm(sph_amg *g, const sph_csr *a, const sph_csr *b, int m, sph_csr
                         acc[j] += av * b->val[kb];
                     }
                 }
-                double d = 0.0;
+                double d = 0.0, off = 0.0;
                 for (int k = e0; k < e; k++) {
                     c->val[k] = acc[c->col[k]];
                     if (c->col[k] == i) d = c->val[k];
+                    else off += fabs(c->val[k]);
                 }
+                /* the smoother's diagonal: a coarse unknown that holds a whole cluster with
+                 * no Dirichlet neighbour (a drop thrown off a Re = 1000 squeeze) has a zero
+                 * (or round-off) entry, its cluster's constant being in the null space; it
+                 * is smoothed with the off-diagonal sum instead (1 when that is zero too) */
+                if (!(d > 1e-10 * off) || !(d > 0.0)) d = off > 0.0 ? off : 1.0;
                 c->diag[i] = d;
             }
         }
@@ -316,12 +322,14 @@ static int prolongation(sph_amg *g, const sph_csr *a, sph_csr *P, int nc) {
  * that falls to round-off of its diagonal entry (a singular coarse operator: a cluster of
  * particles with no free-surface neighbour, as the drops a Re = 1000 squeeze throws off,
  * whose pressure is defined up to a constant) is replaced by that diagonal entry: the
- * factor is then of a nearby positive definite matrix, still a valid preconditioner. Only a
- * non-positive or non-finite diagonal entry is an error. */
+ * factor is then of a nearby positive definite matrix, still a valid preconditioner (a
+ * zero diagonal entry, a cluster whose whole operator is zero, takes 1). Only a non-finite
+ * entry is an error. */
 static int cholesky(double *c, int n) {
     for (int j = 0; j < n; j++) {
         double d = c[(size_t)j * n + j], ajj = d;
-        if (!(ajj > 0.0) || !isfinite(ajj)) return -1;
+        if (!isfinite(ajj)) return -1;
+        if (!(ajj > 0.0)) ajj = 1.0; /* a zero-operator cluster (see spgemm's diagonal) */
         for (int k = 0; k < j; k++) d -= c[(size_t)j * n + k] * c[(size_t)j * n + k];
         if (!(d > 1e-10 * ajj)) d = ajj;
         d = sqrt(d);
