@@ -64,7 +64,7 @@ void sph_shifting_apply(sph_world *w, double dt) {
             cy += v * ngy[k];
         }
         double sx = -D * cx, sy = -D * cy;
-        if (w->surf[i] || w->divr[i] < near) { /* tangential only: n = grad C / |grad C| */
+        if (w->divr[i] < near) { /* tangential only: n = grad C / |grad C| */
             double c = hypot(cx, cy);
             if (c > 0) {
                 double nx = cx / c, ny = cy / c, dn = sx * nx + sy * ny;
