@@ -447,6 +447,7 @@ static int w_stats(lua_State *L) {
     SETI("visc_iterations_total", s.visc_iterations_total);
     SETN("max_density_error", s.max_density_error);
     SETN("peak_density_error", s.peak_density_error);
+    SETN("density_alpha", s.density_alpha);
     SETN("kinetic_energy", s.kinetic_energy);
     SETN("area", s.area);
     SETN("max_speed", s.max_speed);

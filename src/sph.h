@@ -141,6 +141,7 @@ typedef struct sph_stats {
     long visc_iterations_total;
     double max_density_error; /* max |rho/rho0 - 1| over interior fluid, last step */
     double peak_density_error; /* the largest max_density_error of any step so far */
+    double density_alpha;     /* smallest step length of the last step's density passes (1: full) */
     double kinetic_energy;    /* sum 1/2 m |u|^2 over fluid               */
     double area;              /* sum m / rho over fluid                   */
     double max_speed;

@@ -164,6 +164,8 @@ T.case("phase timers", function()
   -- the phases tile the step: their sum is wall_time up to the rounding of the sums
   T.close(sum, st.wall_time, 1e-9 * (1 + st.wall_time), "the phases add up to wall_time")
   T.check(st.steps == 3, "stats().steps counts the steps")
+  T.check(type(st.density_alpha) == "number" and st.density_alpha >= 0 and st.density_alpha <= 1,
+    "stats().density_alpha (the density passes' step length) is in [0, 1]", tostring(st.density_alpha))
 end)
 
 T.case("run schedule", function()
