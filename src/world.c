@@ -242,14 +242,15 @@ static int check_finite(sph_world *w) {
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) continue;
         if (!isfinite(w->x[i]) || !isfinite(w->y[i]) || !isfinite(w->u[i]) || !isfinite(w->v[i]) ||
-            !isfinite(w->p[i]) || !isfinite(w->rho[i]))
+            !isfinite(w->p[i]) || !(w->rho[i] > 0.0))
             first = i < first ? i : first;
     }
     if (first < n) {
         int i = first;
         return sph_world_fail(w,
-                              "NaN or infinity at fluid particle %d at step %ld (t = %g): "
+                              "%s at fluid particle %d at step %ld (t = %g): "
                               "x = (%g, %g), u = (%g, %g), p = %g, rho = %g",
+                              isfinite(w->rho[i]) && w->rho[i] <= 0.0 ? "non-positive density" : "NaN or infinity",
                               w->id[i], w->steps, w->t, w->x[i], w->y[i], w->u[i], w->v[i], w->p[i],
                               w->rho[i]);
     }
