@@ -72,6 +72,16 @@ typedef struct sph_amg {
     int sweeps;         /* Gauss-Seidel sweeps before and after the coarse correction; 1 */
     int coarse_max;     /* stop coarsening at this many rows; 100                        */
     int wcycle_from;    /* levels from this one down visit the next twice (W-cycle); 1   */
+    /* the finest level's smoother (amg.c, "The finest level"): the fine matrix's
+     * off-diagonals split per row into L (earlier rows of the same thread block) in
+     * [fs[i], fm[i]) and the rest, U, in [fu[i], fs[i + 1]); values in float (rounded
+     * toward zero), the inverse diagonal in double */
+    int *fs, *fm, *fu, *fcol;
+    float *fval;
+    double *fdinv;
+    int fcap_n;
+    long fcap_nnz;
+    int fblocks;        /* thread blocks the split was made for (1: plain Gauss-Seidel) */
     /* what the last setup built */
     int fine_n;
     long nnz_total;     /* sum of nonzeros over all levels (operator complexity x fine nnz) */
@@ -231,6 +241,11 @@ void sph_solver_free(sph_solver *s);
  * SPH_SOLVER_JACOBI drops it. 0, or -1 when out of memory or the coarse operator is not
  * positive definite (then the solves fall back to Jacobi). */
 int sph_solver_setup(sph_solver *s, const sph_csr *a, sph_linear_solver kind, int threads);
+/* a's values changed since the setup (same structure and size, still SPD): the AMG
+ * hierarchy is kept, the finest level's smoother takes the new values (without it the
+ * cycle smooths with the old ones: still a valid preconditioner, a weaker one). 0, or -1
+ * when out of memory (the solves then fall back to Jacobi). */
+int sph_solver_refresh(sph_solver *s, const sph_csr *a, int threads);
 /* Preconditioned conjugate gradients for SPD a: x holds the initial guess. The
  * preconditioner is the AMG V-cycle when the last sph_solver_setup was for a with AMG,
  * Jacobi otherwise. */
@@ -242,6 +257,8 @@ int sph_amg_setup(sph_amg *g, const sph_csr *a, int threads);
 /* z = one symmetric multigrid cycle applied to r (from z = 0); a is the fine matrix (values may
  * differ from those at setup, same structure and size). */
 void sph_amg_apply(sph_amg *g, const sph_csr *a, const double *r, double *z, int threads);
+/* The finest level's smoother takes a's values (same structure as at the setup). */
+int sph_amg_refresh(sph_amg *g, const sph_csr *a, int threads);
 void sph_amg_free(sph_amg *g);
 
 #endif

@@ -84,6 +84,15 @@ int sph_solver_setup(sph_solver *s, const sph_csr *a, sph_linear_solver kind, in
     return 0;
 }
 
+int sph_solver_refresh(sph_solver *s, const sph_csr *a, int threads) {
+    if (s->amg_for != a || s->amg.levels == 0) return 0;
+    double t0 = omp_get_wtime();
+    int rc = sph_amg_refresh(&s->amg, a, threads);
+    s->setup_time += omp_get_wtime() - t0;
+    if (rc) s->amg_for = 0; /* out of memory: Jacobi from here on */
+    return rc;
+}
+
 static double dot(const double *a, const double *b, int n, int threads) {
     double s = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : s) num_threads(threads)
