@@ -94,7 +94,7 @@ static int transpose(const sph_csr *a, int m, sph_csr *t, int *cur) {
     for (int j = 0; j <= m; j++) t->start[j] = 0;
     for (int k = 0; k < nnz; k++) t->start[a->col[k] + 1]++;
     for (int j = 0; j < m; j++) t->start[j + 1] += t->start[j];
-    memcpy(cur, t->start, sizeof(int) * (size_t)m);
+    if (m > 0) memcpy(cur, t->start, sizeof(int) * (size_t)m);
     for (int i = 0; i < n; i++)
         for (int k = a->start[i]; k < a->start[i + 1]; k++) {
             int e = cur[a->col[k]]++;
@@ -608,6 +608,75 @@ static void vcycle(sph_amg *g, int l, const sph_csr *a, const double *b, double 
     for (int s = 0; s < sweeps; s++) gs_sweep(a, b, x, L->t, 1, threads);
 }
 
+int sph_amg_set_ids(sph_amg *g, int n, const int *row_of, const int *id) {
+    if (n > g->ridcap) {
+        int cap = n + n / 4 + 16;
+        if (sph_grow((void **)&g->rid, sizeof(int), cap)) return -1;
+        g->ridcap = cap;
+    }
+    for (int r = 0; r < n; r++) g->rid[r] = id[row_of[r]];
+    return 0;
+}
+
+int sph_amg_reuse(sph_amg *g, const sph_csr *a, const int *row_of, const int *id, int threads) {
+    if (g->levels < 2 || !g->rid) return 1;
+    int n_old = g->fine_n, n = a->n, nc = g->lev[1].A.n, maxid = -1;
+    for (int r = 0; r < n_old; r++)
+        if (g->rid[r] > maxid) maxid = g->rid[r];
+    if (maxid + 1 > g->idmapcap) {
+        int cap = maxid + 1 + (maxid + 1) / 4 + 16;
+        if (sph_grow((void **)&g->idmap, sizeof(int), cap)) return -1;
+        for (int q = g->idmapcap; q < cap; q++) g->idmap[q] = -1;
+        g->idmapcap = cap;
+    }
+    int *map = g->idmap;
+    for (int r = 0; r < n_old; r++) map[g->rid[r]] = r;
+    /* the new prolongation (into the scratch g->AP, then swapped in): row r is the old row
+     * of its particle, or empty */
+    sph_amg_level *L = &g->lev[0];
+    sph_csr *P = &g->AP;
+    int fail = sph_csr_reserve(P, n, 1);
+    if (!fail) {
+        P->start[0] = 0;
+        for (int r = 0; r < n; r++) {
+            int q = id[row_of[r]], o = q <= maxid ? map[q] : -1;
+            P->start[r + 1] = P->start[r] + (o >= 0 ? L->P.start[o + 1] - L->P.start[o] : 0);
+        }
+        fail = sph_csr_reserve(P, n, P->start[n] > 0 ? P->start[n] : 1);
+    }
+    if (!fail) {
+        for (int r = 0; r < n; r++) {
+            int q = id[row_of[r]], o = q <= maxid ? map[q] : -1;
+            P->diag[r] = 0.0;
+            if (o < 0) continue;
+            int e = P->start[r];
+            for (int k = L->P.start[o]; k < L->P.start[o + 1]; k++, e++) {
+                P->col[e] = L->P.col[k];
+                P->val[e] = L->P.val[k];
+            }
+        }
+    }
+    for (int r = 0; r < n_old; r++) map[g->rid[r]] = -1;
+    if (fail) {
+        g->levels = 0;
+        return -1;
+    }
+    sph_csr t = L->P;
+    L->P = *P;
+    *P = t;
+    if (grow_ints(g, n > nc ? n : nc) || transpose(&L->P, nc, &L->R, g->mark) || grow_vectors(L, n) ||
+        sph_amg_set_ids(g, n, row_of, id)) {
+        g->levels = 0;
+        return -1;
+    }
+    g->fine_n = n;
+    if (fine_split(g, a, threads)) {
+        g->levels = 0;
+        return -1;
+    }
+    return 0;
+}
+
 int sph_amg_refresh(sph_amg *g, const sph_csr *a, int threads) {
     if (g->levels < 2 || a->n != g->fine_n) return 0;
     return fine_split(g, a, threads);
@@ -630,6 +699,10 @@ void sph_amg_free(sph_amg *g) {
         L->x = L->b = L->r = L->t = 0;
         L->vcap = 0;
     }
+    free(g->rid);
+    free(g->idmap);
+    g->rid = g->idmap = 0;
+    g->ridcap = g->idmapcap = 0;
     free(g->fs);
     free(g->fm);
     free(g->fu);

@@ -82,6 +82,14 @@ typedef struct sph_amg {
     int fcap_n;
     long fcap_nnz;
     int fblocks;        /* thread blocks the split was made for (1: plain Gauss-Seidel) */
+    /* reuse across steps (sph_amg_reuse): the particle id of each fine row at the last
+     * setup or reuse, and a scratch map id -> row (-1 between uses) */
+    int *rid, ridcap;
+    int *idmap, idmapcap;
+    int age;            /* reuses since the last setup                                   */
+    int it_fresh;       /* iterations of the first solve after the last setup (-1: none) */
+    int it_recent;      /* iterations of the first solve after the last setup or reuse   */
+    const void *built_for; /* the matrix (the caller's) it was built for                   */
     /* what the last setup built */
     int fine_n;
     long nnz_total;     /* sum of nonzeros over all levels (operator complexity x fine nnz) */
@@ -91,8 +99,11 @@ typedef struct sph_amg {
 typedef struct sph_solver {
     int cap;
     double *r, *z, *q, *d;
-    sph_amg amg;
+    sph_amg amg, amg2;      /* one hierarchy per system (pressure, viscous), kept across steps */
+    sph_amg *cur;           /* the one in use                                             */
+    int first_pending;      /* the next solve is the first since the last setup           */
     const sph_csr *amg_for; /* the matrix the AMG hierarchy was set up for (NULL: Jacobi) */
+    long reuses;            /* setups answered by reusing a hierarchy (statistics)        */
     double setup_time, solve_time; /* seconds, accumulated */
     long solves;                   /* sph_solver_pcg calls on a non-empty system */
 } sph_solver;
@@ -241,6 +252,11 @@ void sph_solver_free(sph_solver *s);
  * SPH_SOLVER_JACOBI drops it. 0, or -1 when out of memory or the coarse operator is not
  * positive definite (then the solves fall back to Jacobi). */
 int sph_solver_setup(sph_solver *s, const sph_csr *a, sph_linear_solver kind, int threads);
+/* As sph_solver_setup, but the hierarchy built for a at an earlier step may be kept
+ * (see solver.c, "Reuse across steps"): row r of a is particle row_of[r], whose stable id
+ * is id[row_of[r]]; the finest level's smoother always takes a's current values. */
+int sph_solver_setup_reuse(sph_solver *s, const sph_csr *a, sph_linear_solver kind, int threads,
+                           const int *row_of, const int *id);
 /* a's values changed since the setup (same structure and size, still SPD): the AMG
  * hierarchy is kept, the finest level's smoother takes the new values (without it the
  * cycle smooths with the old ones: still a valid preconditioner, a weaker one). 0, or -1
@@ -257,6 +273,13 @@ int sph_amg_setup(sph_amg *g, const sph_csr *a, int threads);
 /* z = one symmetric multigrid cycle applied to r (from z = 0); a is the fine matrix (values may
  * differ from those at setup, same structure and size). */
 void sph_amg_apply(sph_amg *g, const sph_csr *a, const double *r, double *z, int threads);
+/* Keep the hierarchy for a new fine matrix a of the same particles (rows renumbered,
+ * some come and go): the prolongation's rows follow their particles' ids (row r: particle
+ * id[row_of[r]]; a new row gets none), the coarse operators stay. 0; 1 when g holds no
+ * ids to map from (nothing changed); -1 out of memory (g is then not usable). */
+int sph_amg_reuse(sph_amg *g, const sph_csr *a, const int *row_of, const int *id, int threads);
+/* Record the ids of a's rows after a setup (for sph_amg_reuse); -1 out of memory. */
+int sph_amg_set_ids(sph_amg *g, int n, const int *row_of, const int *id);
 /* The finest level's smoother takes a's values (same structure as at the setup). */
 int sph_amg_refresh(sph_amg *g, const sph_csr *a, int threads);
 void sph_amg_free(sph_amg *g);
