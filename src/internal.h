@@ -47,6 +47,7 @@ typedef struct sph_solve_result {
  * preconditioner inside CG. Level 0 is the caller's matrix; each level keeps its Galerkin
  * operator, the prolongation P to it from the level above and the restriction R = P^T. */
 #define SPH_AMG_MAX_LEVELS 20
+#define SPH_AMG_MAX_THREADS 64 /* threads of the setup's sparse products (more run as this many) */
 typedef struct sph_amg_level {
     sph_csr A;          /* operator (level 0: the fine matrix with duplicate columns merged) */
     sph_csr P, R;       /* to the next level: n x nc and nc x n (unused on the coarsest) */
@@ -67,6 +68,9 @@ typedef struct sph_amg {
     int *pmark;         /* setup scratch of the sparse products: a marker and an */
     double *pacc;       /* accumulator per thread                                */
     long pcap;
+    int *tcol[SPH_AMG_MAX_THREADS];   /* setup scratch: each thread's rows of a product */
+    double *tval[SPH_AMG_MAX_THREADS];
+    long tcap[SPH_AMG_MAX_THREADS];
     /* knobs (0: default) */
     double theta;       /* strength of connection |a_ij| >= theta sqrt(a_ii a_jj); 0.08  */
     int sweeps;         /* Gauss-Seidel sweeps before and after the coarse correction; 1 */
