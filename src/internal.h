@@ -48,11 +48,30 @@ typedef struct sph_solve_result {
  * operator, the prolongation P to it from the level above and the restriction R = P^T. */
 #define SPH_AMG_MAX_LEVELS 20
 #define SPH_AMG_MAX_THREADS 64 /* threads of the setup's sparse products (more run as this many) */
+/* A level's smoother copy (amg.c, "The smoother's copy"): the operator's off-diagonals
+ * split per row into L (earlier rows of the same thread block) in [fs[i], fm[i]) and the
+ * rest, U, in [fu[i], fs[i + 1]); values in float (rounded toward zero), columns as 16-bit
+ * offsets from the row when they fit, the inverse diagonal in double. */
+typedef struct sph_amg_split {
+    int n;              /* rows it holds (0: none) */
+    int *fs, *fm, *fu;
+    int16_t *fofs;      /* columns as offsets j - i (f16), or                              */
+    int *fcol;          /* as indices when an offset does not fit in 16 bits               */
+    long fcolcap;
+    int f16;
+    float *fval;
+    double *fdinv;
+    int fcap_n;
+    long fcap_nnz;
+    int fblocks;        /* thread blocks the split was made for (1: plain Gauss-Seidel) */
+} sph_amg_split;
+
 typedef struct sph_amg_level {
     sph_csr A;          /* operator (level 0: the fine matrix with duplicate columns merged) */
     sph_csr P, R;       /* to the next level: n x nc and nc x n (unused on the coarsest) */
     double *x, *b, *r, *t; /* work vectors, n each */
     int vcap;
+    sph_amg_split S;    /* the smoother's copy of the operator (level 0: of the caller's matrix) */
 } sph_amg_level;
 
 typedef struct sph_amg {
@@ -76,16 +95,6 @@ typedef struct sph_amg {
     int sweeps;         /* Gauss-Seidel sweeps before and after the coarse correction; 1 */
     int coarse_max;     /* stop coarsening at this many rows; 100                        */
     int wcycle_from;    /* levels from this one down visit the next twice (W-cycle); 1   */
-    /* the finest level's smoother (amg.c, "The finest level"): the fine matrix's
-     * off-diagonals split per row into L (earlier rows of the same thread block) in
-     * [fs[i], fm[i]) and the rest, U, in [fu[i], fs[i + 1]); values in float (rounded
-     * toward zero), the inverse diagonal in double */
-    int *fs, *fm, *fu, *fcol;
-    float *fval;
-    double *fdinv;
-    int fcap_n;
-    long fcap_nnz;
-    int fblocks;        /* thread blocks the split was made for (1: plain Gauss-Seidel) */
     /* reuse across steps (sph_amg_reuse): the particle id of each fine row at the last
      * setup or reuse, and a scratch map id -> row (-1 between uses) */
     int *rid, ridcap;
