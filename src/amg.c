@@ -380,7 +380,12 @@ static void cholesky_solve(const double *c, int n, const double *b, double *x) {
  *   - the smoother's copy holds the off-diagonals in float (the diagonal stays double).
  *     They are rounded toward zero, which keeps a diagonally dominant row dominant, so the
  *     copy stays positive (semi)definite like the matrix and the cycle a symmetric positive
- *     definite preconditioner (CG's own product is in double);
+ *     definite preconditioner (CG's own product is in double). The engine's fine matrices
+ *     are diagonally dominant; a Galerkin coarse operator need not be, and there the
+ *     rounding (a relative 6e-8 of each entry) is far below its smallest eigenvalue. The
+ *     copy's diagonal is the smoother's (spgemm: a zero-operator cluster's is its
+ *     off-diagonal sum), also in the W-cycle's second residual: the cycle is that of the
+ *     copy's symmetric operator throughout;
  *   - its columns are 16-bit offsets from the row when they all fit (rows in cell order:
  *     a row's neighbours are a few rows of cells away), int32 otherwise: 6 bytes a nonzero
  *     instead of 12.
