@@ -783,6 +783,32 @@ int sph_amg_reuse(sph_amg *g, const sph_csr *a, const int *row_of, const int *id
     return 0;
 }
 
+#define SWAP(T, x, y) \
+    do {               \
+        T t_ = (x);    \
+        (x) = (y);     \
+        (y) = t_;      \
+    } while (0)
+
+void sph_amg_swap_scratch(sph_amg *a, sph_amg *b) {
+    SWAP(sph_csr, a->lev[0].A, b->lev[0].A);
+    SWAP(sph_csr, a->AP, b->AP);
+    SWAP(int *, a->agg, b->agg);
+    SWAP(int *, a->mark, b->mark);
+    SWAP(int *, a->sstart, b->sstart);
+    SWAP(int *, a->sj, b->sj);
+    SWAP(int, a->icap, b->icap);
+    SWAP(long, a->sjcap, b->sjcap);
+    SWAP(int *, a->pmark, b->pmark);
+    SWAP(double *, a->pacc, b->pacc);
+    SWAP(long, a->pcap, b->pcap);
+    for (int t = 0; t < SPH_AMG_MAX_THREADS; t++) {
+        SWAP(int *, a->tcol[t], b->tcol[t]);
+        SWAP(double *, a->tval[t], b->tval[t]);
+        SWAP(long, a->tcap[t], b->tcap[t]);
+    }
+}
+
 int sph_amg_refresh(sph_amg *g, const sph_csr *a, int threads) {
     if (g->levels < 2 || a->n != g->fine_n) return 0;
     return split_build(&g->lev[0].S, a, threads);

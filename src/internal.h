@@ -293,6 +293,11 @@ void sph_amg_apply(sph_amg *g, const sph_csr *a, const double *r, double *z, int
 int sph_amg_reuse(sph_amg *g, const sph_csr *a, const int *row_of, const int *id, int threads);
 /* Record the ids of a's rows after a setup (for sph_amg_reuse); -1 out of memory. */
 int sph_amg_set_ids(sph_amg *g, int n, const int *row_of, const int *id);
+/* Exchange the setup-only scratch of two hierarchies (the finest level's merged copy of the
+ * matrix, the products' buffers, the aggregation's arrays): the two systems' hierarchies
+ * share one set (10^5 particles: peak memory 435 -> 376 MB; 290 MB before the second
+ * hierarchy and the smoother copies). */
+void sph_amg_swap_scratch(sph_amg *a, sph_amg *b);
 /* The finest level's smoother takes a's values (same structure as at the setup). */
 int sph_amg_refresh(sph_amg *g, const sph_csr *a, int threads);
 void sph_amg_free(sph_amg *g);

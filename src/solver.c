@@ -114,6 +114,8 @@ static int setup(sph_solver *s, const sph_csr *a, sph_linear_solver kind, int th
     if (kind != SPH_SOLVER_AMG || a->n == 0) return 0;
     double t0 = omp_get_wtime();
     sph_amg *g = slot_for(s, a);
+    /* one set of setup scratch for both hierarchies: this one takes it */
+    sph_amg_swap_scratch(g, g == &s->amg ? &s->amg2 : &s->amg);
     int rc = 1;
     if (row_of && g->built_for == a && g->levels > 1 && g->age < REUSE_MAX_AGE && g->it_fresh >= 0 &&
         g->it_recent <= g->it_fresh + REUSE_SLACK && fabs((double)(a->n - g->fine_n)) <= REUSE_MAX_CHANGE * g->fine_n) {
