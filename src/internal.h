@@ -47,11 +47,31 @@ typedef struct sph_solve_result {
  * preconditioner inside CG. Level 0 is the caller's matrix; each level keeps its Galerkin
  * operator, the prolongation P to it from the level above and the restriction R = P^T. */
 #define SPH_AMG_MAX_LEVELS 20
+#define SPH_AMG_MAX_THREADS 64 /* threads of the setup's sparse products (more run as this many) */
+/* A level's smoother copy (amg.c, "The smoother's copy"): the operator's off-diagonals
+ * split per row into L (earlier rows of the same thread block) in [fs[i], fm[i]) and the
+ * rest, U, in [fu[i], fs[i + 1]); values in float (rounded toward zero), columns as 16-bit
+ * offsets from the row when they fit, the inverse diagonal in double. */
+typedef struct sph_amg_split {
+    int n;              /* rows it holds (0: none) */
+    int *fs, *fm, *fu;
+    int16_t *fofs;      /* columns as offsets j - i (f16), or                              */
+    int *fcol;          /* as indices when an offset does not fit in 16 bits               */
+    long fcolcap;
+    int f16;
+    float *fval;
+    double *fdinv;
+    int fcap_n;
+    long fcap_nnz;
+    int fblocks;        /* thread blocks the split was made for (1: plain Gauss-Seidel) */
+} sph_amg_split;
+
 typedef struct sph_amg_level {
     sph_csr A;          /* operator (level 0: the fine matrix with duplicate columns merged) */
     sph_csr P, R;       /* to the next level: n x nc and nc x n (unused on the coarsest) */
     double *x, *b, *r, *t; /* work vectors, n each */
     int vcap;
+    sph_amg_split S;    /* the smoother's copy of the operator (level 0: of the caller's matrix) */
 } sph_amg_level;
 
 typedef struct sph_amg {
@@ -67,11 +87,22 @@ typedef struct sph_amg {
     int *pmark;         /* setup scratch of the sparse products: a marker and an */
     double *pacc;       /* accumulator per thread                                */
     long pcap;
+    int *tcol[SPH_AMG_MAX_THREADS];   /* setup scratch: each thread's rows of a product */
+    double *tval[SPH_AMG_MAX_THREADS];
+    long tcap[SPH_AMG_MAX_THREADS];
     /* knobs (0: default) */
     double theta;       /* strength of connection |a_ij| >= theta sqrt(a_ii a_jj); 0.08  */
     int sweeps;         /* Gauss-Seidel sweeps before and after the coarse correction; 1 */
     int coarse_max;     /* stop coarsening at this many rows; 100                        */
     int wcycle_from;    /* levels from this one down visit the next twice (W-cycle); 1   */
+    /* reuse across steps (sph_amg_reuse): the particle id of each fine row at the last
+     * setup or reuse, and a scratch map id -> row (-1 between uses) */
+    int *rid, ridcap;
+    int *idmap, idmapcap;
+    int age;            /* reuses since the last setup                                   */
+    int it_fresh;       /* iterations of the first solve after the last setup (-1: none) */
+    int it_recent;      /* iterations of the first solve after the last setup or reuse   */
+    const void *built_for; /* the matrix (the caller's) it was built for                   */
     /* what the last setup built */
     int fine_n;
     long nnz_total;     /* sum of nonzeros over all levels (operator complexity x fine nnz) */
@@ -81,8 +112,11 @@ typedef struct sph_amg {
 typedef struct sph_solver {
     int cap;
     double *r, *z, *q, *d;
-    sph_amg amg;
+    sph_amg amg, amg2;      /* one hierarchy per system (pressure, viscous), kept across steps */
+    sph_amg *cur;           /* the one in use                                             */
+    int first_pending;      /* the next solve is the first since the last setup           */
     const sph_csr *amg_for; /* the matrix the AMG hierarchy was set up for (NULL: Jacobi) */
+    long reuses;            /* setups answered by reusing a hierarchy (statistics)        */
     double setup_time, solve_time; /* seconds, accumulated */
     long solves;                   /* sph_solver_pcg calls on a non-empty system */
 } sph_solver;
@@ -231,6 +265,16 @@ void sph_solver_free(sph_solver *s);
  * SPH_SOLVER_JACOBI drops it. 0, or -1 when out of memory or the coarse operator is not
  * positive definite (then the solves fall back to Jacobi). */
 int sph_solver_setup(sph_solver *s, const sph_csr *a, sph_linear_solver kind, int threads);
+/* As sph_solver_setup, but the hierarchy built for a at an earlier step may be kept
+ * (see solver.c, "Reuse across steps"): row r of a is particle row_of[r], whose stable id
+ * is id[row_of[r]]; the finest level's smoother always takes a's current values. */
+int sph_solver_setup_reuse(sph_solver *s, const sph_csr *a, sph_linear_solver kind, int threads,
+                           const int *row_of, const int *id);
+/* a's values changed since the setup (same structure and size, still SPD): the AMG
+ * hierarchy is kept, the finest level's smoother takes the new values (without it the
+ * cycle smooths with the old ones: still a valid preconditioner, a weaker one). 0, or -1
+ * when out of memory (the solves then fall back to Jacobi). */
+int sph_solver_refresh(sph_solver *s, const sph_csr *a, int threads);
 /* Preconditioned conjugate gradients for SPD a: x holds the initial guess. The
  * preconditioner is the AMG V-cycle when the last sph_solver_setup was for a with AMG,
  * Jacobi otherwise. */
@@ -242,6 +286,20 @@ int sph_amg_setup(sph_amg *g, const sph_csr *a, int threads);
 /* z = one symmetric multigrid cycle applied to r (from z = 0); a is the fine matrix (values may
  * differ from those at setup, same structure and size). */
 void sph_amg_apply(sph_amg *g, const sph_csr *a, const double *r, double *z, int threads);
+/* Keep the hierarchy for a new fine matrix a of the same particles (rows renumbered,
+ * some come and go): the prolongation's rows follow their particles' ids (row r: particle
+ * id[row_of[r]]; a new row gets none), the coarse operators stay. 0; 1 when g holds no
+ * ids to map from (nothing changed); -1 out of memory (g is then not usable). */
+int sph_amg_reuse(sph_amg *g, const sph_csr *a, const int *row_of, const int *id, int threads);
+/* Record the ids of a's rows after a setup (for sph_amg_reuse); -1 out of memory. */
+int sph_amg_set_ids(sph_amg *g, int n, const int *row_of, const int *id);
+/* Exchange the setup-only scratch of two hierarchies (the finest level's merged copy of the
+ * matrix, the products' buffers, the aggregation's arrays): the two systems' hierarchies
+ * share one set (10^5 particles: peak memory 435 -> 376 MB; 290 MB before the second
+ * hierarchy and the smoother copies). */
+void sph_amg_swap_scratch(sph_amg *a, sph_amg *b);
+/* The finest level's smoother takes a's values (same structure as at the setup). */
+int sph_amg_refresh(sph_amg *g, const sph_csr *a, int threads);
 void sph_amg_free(sph_amg *g);
 
 #endif

@@ -311,7 +311,7 @@ int sph_pressure_solve(sph_world *w, double dt) {
 
     if (pin >= 0) make_compatible(w, w->m[pin] * source_div(w, pin) / (rho0 * dt));
 
-    if (sph_solver_setup(&w->solver, A, w->par.solver, threads))
+    if (sph_solver_setup_reuse(&w->solver, A, w->par.solver, threads, w->row_of, w->id))
         return sph_world_fail(w, "pressure solver: multigrid setup failed at step %ld (t = %g, %d unknowns): "
                               "out of memory or a coarse operator not positive definite", w->steps, w->t, nrows);
     double tol = w->par.tol;
