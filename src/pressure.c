@@ -416,20 +416,20 @@ static inline double continuity_rate(const sph_world *w, const double *ax, const
     return div;
 }
 
-/* Continuity over interior fluid, rho_i += scale * continuity_rate; free-surface particles
- * are reset to rho0 when reset_surface is set. Returns the max |rho / rho0 - 1| over
- * interior fluid. */
-static double advance_density(sph_world *w, const double *ax, const double *ay, double scale, int reset_surface) {
+/* Continuity over the step, rho_i += dt * continuity_rate(u^{n+1}) for interior fluid;
+ * free-surface particles are reset to rho0. Returns the max |rho / rho0 - 1| over interior
+ * fluid. (The density passes apply their own change, scaled by their step length.) */
+static double advance_density(sph_world *w, const double *ax, const double *ay, double dt) {
     int n = w->n;
     double rho0 = w->par.rho0, maxerr = 0.0;
 #pragma omp parallel for schedule(static) num_threads(w->threads) reduction(max : maxerr)
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) continue;
         if (w->surf[i]) {
-            if (reset_surface) w->rho[i] = rho0;
+            w->rho[i] = rho0;
             continue;
         }
-        w->rho[i] += scale * continuity_rate(w, ax, ay, i);
+        w->rho[i] += dt * continuity_rate(w, ax, ay, i);
         double e = fabs(w->rho[i] / rho0 - 1.0);
         if (e > maxerr) maxerr = e;
     }
@@ -452,7 +452,7 @@ void sph_pressure_correct(sph_world *w, double dt) {
         w->vs[i] += dt * av;
     }
     sph_boundary_sync(w, w->us, w->vs, 1);
-    w->st.max_density_error = advance_density(w, w->us, w->vs, dt, 1);
+    w->st.max_density_error = advance_density(w, w->us, w->vs, dt);
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) continue;
