@@ -44,6 +44,22 @@ F.rel_l2 = rel_l2
 -- Observed order between two runs: log(e1 / e2) / log(dx1 / dx2).
 function F.order(e1, e2, dx1, dx2) return math.log(e1 / e2) / math.log(dx1 / dx2) end
 
+-- Runs case c at its quick resolutions with run options opts, prints one comment line per
+-- resolution (the error, extra(r) when given, the cost) and the observed order between the
+-- first two; returns the results and that order. The tests' convergence loop.
+function F.quick_study(c, opts, extra)
+  local r = {}
+  for k, dx in ipairs(c.quick) do
+    r[k] = c.run(dx, opts)
+    print(string.format("# dx = 1/%d  %s = %.5g  %s%d particles  %d steps  %.1f pressure / %.1f viscous iterations per step  %.2f s",
+      math.floor(1 / dx + 0.5), c.error_name, r[k].error, extra and extra(r[k]) .. "  " or "", r[k].particles,
+      r[k].steps, r[k].p_iter, r[k].v_iter, r[k].wall))
+  end
+  local order = F.order(r[1].error, r[2].error, c.quick[1], c.quick[2])
+  print(string.format("# observed order %.2f", order))
+  return r, order
+end
+
 -- A channel 0 < y < Hc between fixed plates (3 dx thick), periodic in x over Lx = 10 dx,
 -- unless lid is set: then the upper plate moves along x at velocity lid.
 local function channel(dx, opts, mat, gravity, Hc, lid)
