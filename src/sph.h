@@ -65,7 +65,12 @@ typedef struct sph_params {
                               error exceeds density_tol; default 2                  */
     double density_tol;    /* dt shrinks while the max density error exceeds this
                               (0: no control); default 0.005                        */
+    double density_limit;  /* more passes (up to SPH_MAX_DENSITY_PASSES in all) while
+                              the error still exceeds this after density_passes
+                              (0: none); default 0.008                              */
 } sph_params;
+
+#define SPH_MAX_DENSITY_PASSES 10
 
 void sph_params_default(sph_params *p);
 
@@ -142,6 +147,7 @@ typedef struct sph_stats {
     double max_density_error; /* max |rho/rho0 - 1| over interior fluid, last step */
     double peak_density_error; /* the largest max_density_error of any step so far */
     double density_alpha;     /* smallest step length of the last step's density passes (1: full) */
+    int density_passes;       /* density-correction passes in the last step */
     double kinetic_energy;    /* sum 1/2 m |u|^2 over fluid               */
     double area;              /* sum m / rho over fluid                   */
     double max_speed;

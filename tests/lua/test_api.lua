@@ -24,6 +24,7 @@ T.case("world arguments", function()
   T.checkerror("rho", "negative rho", sph.world, { dx = 0.1, rho = -1 })
   T.checkerror("density_passes", "density_passes = 0", sph.world, { dx = 0.1, density_passes = 0 })
   T.checkerror("density_tol", "density_tol = 1", sph.world, { dx = 0.1, density_tol = 1 })
+  T.checkerror("density_limit", "density_limit = -0.1", sph.world, { dx = 0.1, density_limit = -0.1 })
   T.checkerror("density_relax", "density_relax = 2", sph.world, { dx = 0.1, density_relax = 2 })
   T.checkerror("table expected", "world needs a table", sph.world, 3)
 end)
@@ -166,6 +167,8 @@ T.case("phase timers", function()
   T.check(st.steps == 3, "stats().steps counts the steps")
   T.check(type(st.density_alpha) == "number" and st.density_alpha >= 0 and st.density_alpha <= 1,
     "stats().density_alpha (the density passes' step length) is in [0, 1]", tostring(st.density_alpha))
+  T.check(math.type(st.density_passes) == "integer" and st.density_passes >= 0 and st.density_passes <= 10,
+    "stats().density_passes (the last step's density corrections) is an integer in [0, 10]", tostring(st.density_passes))
 end)
 
 T.case("run schedule", function()
