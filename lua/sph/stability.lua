@@ -30,13 +30,17 @@ end
 -- Free-surface flags against the sample's outline (its body's: droplets thrown off do not
 -- count), in rows of height dx: a surface
 -- particle more than 3 dx inside the outermost particle of its row and the two rows beside
--- it is false ("inside"); the outermost particle of a row not flagged is "missing" when it
+-- it is false ("inside") when it is also enclosed (every 45-degree cone around it holds a
+-- particle within 1.6 dx: a Re = 1000 start throws a sheet off the upper contact line
+-- whose underside, 3 dx and more inside the sheet's tip, is rightly free surface; 28 such
+-- particles were counted "inside" before the enclosure test); the outermost particle of a row not flagged is "missing" when it
 -- is exposed, i.e. no fluid particle lies in the 90-degree cone facing outwards (+x) within
 -- 1.5 dx of it (a particle with a surface particle diagonally in front of it, 0.8 dx away,
 -- is the second layer, not the edge); rows that touch a plate (within dx of its face: the
 -- contact line, whose particles have the wall in their support and are held by it, not at
 -- p = 0) are not checked. The half sample's other sides are the symmetry plane and the
--- plates, with no free surface.
+-- plates, with no free surface. Returns the counts inside and missing and the list of the
+-- inside particles' indices.
 function S.surface_check(w, dx, y_lo, y_hi)
   local x, y, s = w:field("x"), w:field("y"), w:field("surface")
   -- the outline is the body's, not the spray's: a particle with fewer than 3 others within
@@ -66,11 +70,43 @@ function S.surface_check(w, dx, y_lo, y_hi)
     local r = math.floor(y[k] / dx)
     if (not outer[r] or x[k] > outer[r]) and body(k) then outer[r] = x[k] end
   end
-  local inside, missing = 0, 0
+  -- a surface particle is "inside" when it is enclosed: each of the eight 45-degree cones
+  -- around it (centred every 45 degrees) holds another particle within 1.6 dx; the plates
+  -- count as the wall particles half a spacing beyond their faces
+  local R2 = (1.6 * dx) ^ 2
+  local function enclosed(k)
+    local filled, nf = {}, 0
+    local function see(ax, ay)
+      local r2 = ax * ax + ay * ay
+      if r2 >= R2 or r2 == 0 then return end
+      local a = math.atan(ay, ax)
+      for m = 0, 7 do
+        if not filled[m] then
+          local d = math.abs((a - m * math.pi / 4 + math.pi) % (2 * math.pi) - math.pi)
+          if d < math.pi / 8 then filled[m] = true; nf = nf + 1 end
+        end
+      end
+    end
+    local ci, cj = math.floor(x[k] / dx), math.floor(y[k] / dx)
+    for i = ci - 2, ci + 2 do
+      for j = cj - 2, cj + 2 do
+        for _, q in ipairs(cells[key(i, j)] or {}) do
+          if q ~= k then see(x[q] - x[k], y[q] - y[k]) end
+        end
+      end
+    end
+    for _, yw in ipairs{ y_lo - 0.5 * dx, y_hi + 0.5 * dx } do
+      if math.abs(yw - y[k]) < 1.6 * dx then
+        for j = -8, 8 do see(j * 0.25 * dx, yw - y[k]) end
+      end
+    end
+    return nf == 8
+  end
+  local inside, missing, list = 0, 0, {}
   for k = 1, #x do
     local r = math.floor(y[k] / dx)
     local far = math.max(outer[r - 1] or -math.huge, outer[r] or -math.huge, outer[r + 1] or -math.huge)
-    if s[k] == 1 and x[k] < far - 3 * dx then inside = inside + 1 end
+    if s[k] == 1 and x[k] < far - 3 * dx and enclosed(k) then inside = inside + 1; list[#list + 1] = k end
     if s[k] == 0 and outer[r] and x[k] >= outer[r] and y[k] > y_lo + dx and y[k] < y_hi - dx then
       local exposed = true
       for q = 1, #x do
@@ -80,7 +116,7 @@ function S.surface_check(w, dx, y_lo, y_hi)
       if exposed then missing = missing + 1 end
     end
   end
-  return inside, missing
+  return inside, missing, list
 end
 
 -- Runs case c to t_end (default c.t_end); opts: dx (default 1/40), threads, world (more
