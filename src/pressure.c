@@ -49,7 +49,21 @@
  * sooner (t = 0.083 against 0.095). Without the density correction (density_relax = 0)
  * the pressure does not alternate, but the continuity density drifts 4 -> 30 % by t = 0.1
  * and the run fails at the same time: the correction's coherent displacement feeds the
- * mode, and is needed. */
+ * mode, and is needed.
+ * The difference form of the projection's gradient, grad p_i = L sum_j V_j (p_j - p_i)
+ * grad W_ij (Lind et al. 2012), has no term in p_i itself, the term that in the
+ * symmetric form scales with the film's large absolute pressure: with it the film
+ * started thin ran 1500 steps without alternating (h = 0.35, F h^6 0.86 of lubrication
+ * with the half-width a = 1 / h), and the long thin-film squeeze got to h = 0.225, where
+ * dt ran away instead (the density error crept to 1.2 %, dt fell 0.8 times a step and the
+ * pressure grew as 1 / dt: a divergence the difference form's projection does not remove).
+ * Not kept: the plate force stays the symmetric sum, so a loaded plate no longer meets the
+ * fluid's reaction (Newtonian F = 20 at dx = 1/20: closing speed 1.64 -> 1.87 times
+ * lubrication; Bingham F = 400 error 1.12 -> 1.56), while the constant-velocity Bingham
+ * force came closer to thin-film theory (1.073 -> 1.017). The difference form between
+ * fluid particles with the symmetric one against the walls blew up in three steps (the
+ * p_i terms no longer cancel next to a wall). A consistent pair would need the plate
+ * force from the same difference form. */
 #include "internal.h"
 
 #include <math.h>
