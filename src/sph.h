@@ -68,6 +68,9 @@ typedef struct sph_params {
     double density_limit;  /* more passes (up to SPH_MAX_DENSITY_PASSES in all) while
                               the error still exceeds this after density_passes
                               (0: none); default 0.008                              */
+    double density_diffusion; /* kappa: each step rho_i += kappa h^2 (compact Laplacian
+                              of rho)_i over interior fluid, a filter of the continuity
+                              density's particle-scale modes (thin films); default 0 */
 } sph_params;
 
 #define SPH_MAX_DENSITY_PASSES 10
