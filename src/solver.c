@@ -44,10 +44,12 @@ void sph_csr_free(sph_csr *a) {
 
 void sph_csr_matvec(const sph_csr *a, const double *x, double *y, int threads) {
     int n = a->n;
+    const int *st = a->start, *col = a->col; /* in locals: not reloaded after each store to y */
+    const double *val = a->val;
 #pragma omp parallel for schedule(static) num_threads(threads)
     for (int i = 0; i < n; i++) {
         double s = 0.0;
-        for (int k = a->start[i]; k < a->start[i + 1]; k++) s += a->val[k] * x[a->col[k]];
+        for (int k = st[i]; k < st[i + 1]; k++) s += val[k] * x[col[k]];
         y[i] = s;
     }
 }
@@ -180,6 +182,23 @@ static double dot(const double *a, const double *b, int n, int threads) {
     return s;
 }
 
+/* y = a x and x . y in one pass (CG's product and its dot product d . q: the same sums
+ * as sph_csr_matvec and dot, in the same order) */
+static double matvec_dot(const sph_csr *a, const double *x, double *y, int threads) {
+    int n = a->n;
+    const int *st = a->start, *col = a->col;
+    const double *val = a->val;
+    double s = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : s) num_threads(threads)
+    for (int i = 0; i < n; i++) {
+        double t = 0.0;
+        for (int k = st[i]; k < st[i + 1]; k++) t += val[k] * x[col[k]];
+        y[i] = t;
+        s += x[i] * t;
+    }
+    return s;
+}
+
 /* z = M^-1 r */
 static void precondition(sph_solver *s, const sph_csr *a, const double *r, double *z, int amg, int threads) {
     int n = a->n;
@@ -213,8 +232,7 @@ sph_solve_result sph_solver_pcg(sph_solver *s, const sph_csr *a, const double *b
     double rnorm = sqrt(dot(r, r, n, threads));
     int it = 0;
     while (rnorm > tol * bnorm && it < max_iter) {
-        sph_csr_matvec(a, d, q, threads);
-        double dq = dot(d, q, n, threads);
+        double dq = matvec_dot(a, d, q, threads);
         if (!(dq > 0.0)) break; /* not SPD, or breakdown: reported as not converged */
         double alpha = rz / dq;
         double rr = 0.0, rz1 = 0.0;
@@ -289,13 +307,15 @@ typedef struct pcg_state {
     sph_solve_result res;
 } pcg_state;
 
-/* y1 = a1 x1, y2 = a2 x2 for two matrices of the same structure */
-static void matvec_pair(const sph_csr *a1, const sph_csr *a2, const double *x1, const double *x2, double *y1,
-                        double *y2, int threads) {
+/* y1 = a1 x1, y2 = a2 x2 for two matrices of the same structure, and the dot products
+ * x1 . y1, x2 . y2 (as matvec_dot) */
+static void matvec_pair_dot(const sph_csr *a1, const sph_csr *a2, const double *x1, const double *x2, double *y1,
+                            double *y2, double dots[2], int threads) {
     int n = a1->n;
     const int *st = a1->start, *col = a1->col;
     const double *v1 = a1->val, *v2 = a2->val;
-#pragma omp parallel for schedule(static) num_threads(threads)
+    double d1 = 0.0, d2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : d1, d2) num_threads(threads)
     for (int i = 0; i < n; i++) {
         double s1 = 0.0, s2 = 0.0;
         for (int k = st[i]; k < st[i + 1]; k++) {
@@ -305,7 +325,11 @@ static void matvec_pair(const sph_csr *a1, const sph_csr *a2, const double *x1, 
         }
         y1[i] = s1;
         y2[i] = s2;
+        d1 += x1[i] * s1;
+        d2 += x2[i] * s2;
     }
+    dots[0] = d1;
+    dots[1] = d2;
 }
 
 void sph_solver_pcg2(sph_solver *s, const sph_csr *a1, const sph_csr *a2, const double *b1, const double *b2,
@@ -345,15 +369,16 @@ void sph_solver_pcg2(sph_solver *s, const sph_csr *a1, const sph_csr *a2, const 
         p->on = p->rnorm > tol * p->bnorm && p->it < max_iter;
     }
     while (P[0].on || P[1].on) {
-        if (P[0].on && P[1].on) matvec_pair(a1, a2, P[0].d, P[1].d, P[0].q, P[1].q, threads);
-        else if (P[0].on) sph_csr_matvec(a1, P[0].d, P[0].q, threads);
-        else sph_csr_matvec(a2, P[1].d, P[1].q, threads);
+        double dqs[2] = {0.0, 0.0};
+        if (P[0].on && P[1].on) matvec_pair_dot(a1, a2, P[0].d, P[1].d, P[0].q, P[1].q, dqs, threads);
+        else if (P[0].on) dqs[0] = matvec_dot(a1, P[0].d, P[0].q, threads);
+        else dqs[1] = matvec_dot(a2, P[1].d, P[1].q, threads);
         int pre[2] = {0, 0};
         for (int c = 0; c < 2; c++) {
             pcg_state *p = &P[c];
             if (!p->on) continue;
             double *x = p->x, *r = p->r, *q = p->q, *d = p->d;
-            double dq = dot(d, q, n, threads);
+            double dq = dqs[c];
             if (!(dq > 0.0)) { /* not SPD, or breakdown: reported as not converged */
                 p->on = 0;
                 continue;
