@@ -111,7 +111,14 @@ static int transpose(const sph_csr *a, int m, sph_csr *t, int *cur) {
  * One pass: each thread appends its block of rows to its own buffer (grown as needed),
  * then the blocks are copied into c. (It was two passes, one to count each row's entries
  * and one to fill them: the count was ~30 % of the product's time, and the fine level's
- * A P is ~40 % of a setup at 10^5 rows.) */
+ * A P is ~40 % of a setup at 10^5 rows.) Tried and dropped (the viscous setup at 1.01e5
+ * rows, 1 thread, best of 5 interleaved medians on the shared machine): the inner loop
+ * without the branch on a new column (select and unconditional stores) and a bound per row
+ * from b's longest row instead of the pass over a's row, 48.2 -> 49.0 ms (no gain: the
+ * compiler kept a branch, and the loop is ~2.5 ns per product term either way); b's rows of
+ * up to 4 entries padded to 4 (no branch on the row length), 49.4 -> 61.5 ms. Setup at
+ * that size, per part: A P 36 %, the smoothers' copies 19 %, the merged copy of the fine
+ * matrix and vectors 13 %, P and R 12 %, R (A P) 10 %, strength 5 %, aggregation 4 %. */
 static int spgemm(sph_amg *g, const sph_csr *a, const sph_csr *b, int m, sph_csr *c, int threads) {
     int n = a->n;
     if (n < AMG_PAR_MIN) threads = 1;

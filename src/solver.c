@@ -113,7 +113,13 @@ static sph_amg *slot_for(sph_solver *s, const sph_csr *a) {
  * step before). Tried and dropped for it: keeping the aggregates and prolongations (moved
  * by id) and recomputing only the coarse operators from the new values: 11 iterations a
  * step instead of 10 with the hierarchy of up to 20 steps before, setup 76 -> 56 ms but
- * solves 116 -> 131 ms a step (loaded machine, 3 interleaved runs): no net gain. */
+ * solves 116 -> 131 ms a step (loaded machine, 3 interleaved runs): no net gain. Not tried,
+ * from the setup's parts (amg.c, spgemm): a numeric-only re-setup (the aggregates and the
+ * strong graph kept, the prolongation's weights and the Galerkin products recomputed into
+ * the old patterns) saves at most the strength and aggregation passes, ~9 % of the
+ * viscous setup (4-5 ms a step at 1e5 rows): the products and the smoothers' copies, ~65 %,
+ * are redone either way, and the fine matrix's pattern changes every step (the neighbour
+ * lists), so A P's pattern cannot be kept. */
 #define REUSE_MAX_AGE 20
 #define REUSE_SLACK 1
 #define REUSE_MAX_CHANGE 0.05
@@ -183,7 +189,9 @@ static double dot(const double *a, const double *b, int n, int threads) {
 }
 
 /* y = a x and x . y in one pass (CG's product and its dot product d . q: the same sums
- * as sph_csr_matvec and dot, in the same order) */
+ * as sph_csr_matvec and dot, in the same order). With the arrays in locals, one CG
+ * iteration on the viscous system at 1.01e5 rows (AMG, 1 thread) 7.88 -> 7.28 ms
+ * (medians of 5 interleaved runs, shared machine). */
 static double matvec_dot(const sph_csr *a, const double *x, double *y, int threads) {
     int n = a->n;
     const int *st = a->start, *col = a->col;
