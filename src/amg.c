@@ -44,7 +44,9 @@ static int grow_vectors(sph_amg_level *L, int n) {
     if (n <= L->vcap) return 0;
     int cap = n + n / 4 + 16;
     if (sph_grow((void **)&L->x, sizeof(double), cap) || sph_grow((void **)&L->b, sizeof(double), cap) ||
-        sph_grow((void **)&L->r, sizeof(double), cap) || sph_grow((void **)&L->t, sizeof(double), cap))
+        sph_grow((void **)&L->r, sizeof(double), cap) || sph_grow((void **)&L->t, sizeof(double), cap) ||
+        sph_grow((void **)&L->x2, sizeof(double), cap) || sph_grow((void **)&L->b2, sizeof(double), cap) ||
+        sph_grow((void **)&L->r2, sizeof(double), cap) || sph_grow((void **)&L->t2, sizeof(double), cap))
         return -1;
     L->vcap = cap;
     return 0;
@@ -109,7 +111,14 @@ static int transpose(const sph_csr *a, int m, sph_csr *t, int *cur) {
  * One pass: each thread appends its block of rows to its own buffer (grown as needed),
  * then the blocks are copied into c. (It was two passes, one to count each row's entries
  * and one to fill them: the count was ~30 % of the product's time, and the fine level's
- * A P is ~40 % of a setup at 10^5 rows.) */
+ * A P is ~40 % of a setup at 10^5 rows.) Tried and dropped (the viscous setup at 1.01e5
+ * rows, 1 thread, best of 5 interleaved medians on the shared machine): the inner loop
+ * without the branch on a new column (select and unconditional stores) and a bound per row
+ * from b's longest row instead of the pass over a's row, 48.2 -> 49.0 ms (no gain: the
+ * compiler kept a branch, and the loop is ~2.5 ns per product term either way); b's rows of
+ * up to 4 entries padded to 4 (no branch on the row length), 49.4 -> 61.5 ms. Setup at
+ * that size, per part: A P 36 %, the smoothers' copies 19 %, the merged copy of the fine
+ * matrix and vectors 13 %, P and R 12 %, R (A P) 10 %, strength 5 %, aggregation 4 %. */
 static int spgemm(sph_amg *g, const sph_csr *a, const sph_csr *b, int m, sph_csr *c, int threads) {
     int n = a->n;
     if (n < AMG_PAR_MIN) threads = 1;
@@ -408,7 +417,8 @@ static inline float to_float0(double v) {
 
 /* Fill the split copy; columns as int16 offsets j - i when all fit (the rows are in cell
  * order, so a row's neighbours are within a few rows of cells of it), else as int32. */
-static int split_fill(sph_amg_split *S, const sph_csr *a, int threads, int nb, int f16) {
+static int split_fill(sph_amg_split *S, const sph_csr *a, int threads, int nb, int f16, float *fval,
+                      double *fdinv) {
     int n = a->n, ovf = 0;
 #pragma omp parallel for schedule(static) num_threads(threads) reduction(| : ovf)
     for (int t = 0; t < nb; t++) {
@@ -430,11 +440,11 @@ static int split_fill(sph_amg_split *S, const sph_csr *a, int threads, int nb, i
                 } else {
                     S->fcol[e] = j;
                 }
-                S->fval[e] = to_float0(a->val[k]);
+                fval[e] = to_float0(a->val[k]);
             }
             S->fm[i] = el;
             S->fu[i] = eu;
-            S->fdinv[i] = 1.0 / a->diag[i];
+            fdinv[i] = 1.0 / a->diag[i];
         }
     }
     return ovf;
@@ -464,7 +474,8 @@ static int split_build(sph_amg_split *S, const sph_csr *a, int threads) {
     S->n = n;
     S->fs[n] = nnz;
     S->f16 = 1;
-    if (!split_fill(S, a, threads, nb, 1)) return 0;
+    S->has2 = 0;
+    if (!split_fill(S, a, threads, nb, 1, S->fval, S->fdinv)) return 0;
     /* an offset beyond int16: int32 columns */
     S->f16 = 0;
     if (nnz > S->fcolcap) {
@@ -474,7 +485,29 @@ static int split_build(sph_amg_split *S, const sph_csr *a, int threads) {
         S->fcol = q;
         S->fcolcap = cap;
     }
-    split_fill(S, a, threads, nb, 0);
+    split_fill(S, a, threads, nb, 0, S->fval, S->fdinv);
+    return 0;
+}
+
+int sph_amg_second(sph_amg *g, const sph_csr *a2, int threads) {
+    sph_amg_split *S = &g->lev[0].S;
+    if (g->levels < 2 || S->n != a2->n) return 0;
+    int n = a2->n, nnz = a2->start[n];
+    if (n + 1 > S->fcap2_n) {
+        int cap = n + 1 + n / 4 + 16;
+        if (sph_grow((void **)&S->fdinv2, sizeof(double), cap)) return -1;
+        S->fcap2_n = cap;
+    }
+    if (nnz > S->fcap2_nnz) {
+        long cap = nnz + nnz / 4 + 16;
+        float *v = realloc(S->fval2, sizeof(float) * (size_t)cap);
+        if (!v) return -1;
+        S->fval2 = v;
+        S->fcap2_nnz = cap;
+    }
+    /* the same structure: the columns are rewritten with what they hold */
+    split_fill(S, a2, threads, S->fblocks, S->f16, S->fval2, S->fdinv2);
+    S->has2 = 1;
     return 0;
 }
 
@@ -572,6 +605,145 @@ static void split_residual(const sph_amg_split *S, int n, const double *b, const
     else split_residual_32(S, n, b, x, r, S->fcol, threads);
 }
 
+/* Two right-hand sides at once (sph_amg_apply2): the same sweeps, each system with its own
+ * values (v1, d1 and v2, d2: the finest level's two systems; on the coarse levels both are
+ * the level's own), the structure read once for both. Per system, the arithmetic is that
+ * of the one-system sweeps above, in the same order. */
+#define FINE_SWEEPS2(SUF, IT, COL)                                                                         \
+    static void fine_forward2_##SUF(const sph_amg_split *S, int n, const float *v1, const float *v2,       \
+                                    const double *d1, const double *d2, const double *b1, const double *b2, \
+                                    double *x1, double *x2, double *r1, double *r2, const IT *fc, int threads) { \
+        int nb = S->fblocks;                                                                               \
+        const int *fs = S->fs, *fm = S->fm, *fu = S->fu;                                                   \
+        _Pragma("omp parallel num_threads(nb > 1 ? threads : 1)") {                                       \
+            _Pragma("omp for schedule(static)") for (int t = 0; t < nb; t++) {                             \
+                int lo = (int)((long)n * t / nb), hi = (int)((long)n * (t + 1) / nb);                      \
+                for (int i = lo; i < hi; i++) {                                                            \
+                    double s1 = b1[i], s2 = b2[i];                                                         \
+                    for (int k = fs[i]; k < fm[i]; k++) {                                                  \
+                        int j = COL(k);                                                                    \
+                        s1 -= v1[k] * x1[j];                                                               \
+                        s2 -= v2[k] * x2[j];                                                               \
+                    }                                                                                      \
+                    x1[i] = s1 * d1[i];                                                                    \
+                    x2[i] = s2 * d2[i];                                                                    \
+                }                                                                                          \
+            }                                                                                              \
+            _Pragma("omp for schedule(static)") for (int i = 0; i < n; i++) {                              \
+                double s1 = 0.0, s2 = 0.0;                                                                 \
+                for (int k = fu[i]; k < fs[i + 1]; k++) {                                                  \
+                    int j = COL(k);                                                                        \
+                    s1 -= v1[k] * x1[j];                                                                   \
+                    s2 -= v2[k] * x2[j];                                                                   \
+                }                                                                                          \
+                r1[i] = s1;                                                                                \
+                r2[i] = s2;                                                                                \
+            }                                                                                              \
+        }                                                                                                  \
+    }                                                                                                      \
+    static void fine_backward2_##SUF(const sph_amg_split *S, int n, const float *v1, const float *v2,      \
+                                     const double *d1, const double *d2, const double *b1, const double *b2, \
+                                     double *x1, double *x2, double *t1, double *t2, const IT *fc, int threads) { \
+        int nb = S->fblocks;                                                                               \
+        const int *fs = S->fs, *fm = S->fm, *fu = S->fu;                                                   \
+        if (nb <= 1) {                                                                                     \
+            for (int i = n - 1; i >= 0; i--) {                                                             \
+                double s1 = b1[i], s2 = b2[i];                                                             \
+                for (int k = fs[i]; k < fm[i]; k++) {                                                      \
+                    int j = COL(k);                                                                        \
+                    s1 -= v1[k] * x1[j];                                                                   \
+                    s2 -= v2[k] * x2[j];                                                                   \
+                }                                                                                          \
+                for (int k = fu[i]; k < fs[i + 1]; k++) {                                                  \
+                    int j = COL(k);                                                                        \
+                    s1 -= v1[k] * x1[j];                                                                   \
+                    s2 -= v2[k] * x2[j];                                                                   \
+                }                                                                                          \
+                x1[i] = s1 * d1[i];                                                                        \
+                x2[i] = s2 * d2[i];                                                                        \
+            }                                                                                              \
+            return;                                                                                        \
+        }                                                                                                  \
+        memcpy(t1, x1, sizeof(double) * (size_t)n);                                                        \
+        memcpy(t2, x2, sizeof(double) * (size_t)n);                                                        \
+        _Pragma("omp parallel for schedule(static) num_threads(threads)") for (int t = 0; t < nb; t++) {  \
+            int lo = (int)((long)n * t / nb), hi = (int)((long)n * (t + 1) / nb);                          \
+            for (int i = hi - 1; i >= lo; i--) {                                                           \
+                double s1 = b1[i], s2 = b2[i];                                                             \
+                for (int k = fs[i]; k < fm[i]; k++) { /* same block */                                     \
+                    int j = COL(k);                                                                        \
+                    s1 -= v1[k] * x1[j];                                                                   \
+                    s2 -= v2[k] * x2[j];                                                                   \
+                }                                                                                          \
+                for (int k = fu[i]; k < fs[i + 1]; k++) {                                                  \
+                    int j = COL(k), in = j >= lo && j < hi;                                                \
+                    s1 -= v1[k] * (in ? x1[j] : t1[j]);                                                    \
+                    s2 -= v2[k] * (in ? x2[j] : t2[j]);                                                    \
+                }                                                                                          \
+                x1[i] = s1 * d1[i];                                                                        \
+                x2[i] = s2 * d2[i];                                                                        \
+            }                                                                                              \
+        }                                                                                                  \
+    }                                                                                                      \
+    static void split_residual2_##SUF(const sph_amg_split *S, int n, const float *v1, const float *v2,     \
+                                      const double *d1, const double *d2, const double *b1, const double *b2, \
+                                      const double *x1, const double *x2, double *r1, double *r2, const IT *fc, \
+                                      int threads) {                                                     \
+        const int *fs = S->fs, *fm = S->fm, *fu = S->fu;                                                   \
+        _Pragma("omp parallel for schedule(static) num_threads(n < AMG_PAR_MIN ? 1 : threads)")           \
+        for (int i = 0; i < n; i++) {                                                                      \
+            double s1 = b1[i] - x1[i] / d1[i], s2 = b2[i] - x2[i] / d2[i];                                 \
+            for (int k = fs[i]; k < fm[i]; k++) {                                                          \
+                int j = COL(k);                                                                            \
+                s1 -= v1[k] * x1[j];                                                                       \
+                s2 -= v2[k] * x2[j];                                                                       \
+            }                                                                                              \
+            for (int k = fu[i]; k < fs[i + 1]; k++) {                                                      \
+                int j = COL(k);                                                                            \
+                s1 -= v1[k] * x1[j];                                                                       \
+                s2 -= v2[k] * x2[j];                                                                       \
+            }                                                                                              \
+            r1[i] = s1;                                                                                    \
+            r2[i] = s2;                                                                                    \
+        }                                                                                                  \
+    }
+
+FINE_SWEEPS2(16, int16_t, COL16)
+FINE_SWEEPS2(32, int, COL32)
+
+/* A level's values for the two systems (level 0: the second's are sph_amg_second's). */
+typedef struct split_vals2 {
+    const float *v1, *v2;
+    const double *d1, *d2;
+} split_vals2;
+
+static split_vals2 vals2(const sph_amg_split *S, int l) {
+    split_vals2 q = {S->fval, S->fval, S->fdinv, S->fdinv};
+    if (l == 0 && S->has2) {
+        q.v2 = S->fval2;
+        q.d2 = S->fdinv2;
+    }
+    return q;
+}
+
+static void split_forward2(const sph_amg_split *S, split_vals2 q, int n, const double *b1, const double *b2,
+                           double *x1, double *x2, double *r1, double *r2, int threads) {
+    if (S->f16) fine_forward2_16(S, n, q.v1, q.v2, q.d1, q.d2, b1, b2, x1, x2, r1, r2, S->fofs, threads);
+    else fine_forward2_32(S, n, q.v1, q.v2, q.d1, q.d2, b1, b2, x1, x2, r1, r2, S->fcol, threads);
+}
+
+static void split_backward2(const sph_amg_split *S, split_vals2 q, int n, const double *b1, const double *b2,
+                            double *x1, double *x2, double *t1, double *t2, int threads) {
+    if (S->f16) fine_backward2_16(S, n, q.v1, q.v2, q.d1, q.d2, b1, b2, x1, x2, t1, t2, S->fofs, threads);
+    else fine_backward2_32(S, n, q.v1, q.v2, q.d1, q.d2, b1, b2, x1, x2, t1, t2, S->fcol, threads);
+}
+
+static void split_residual2(const sph_amg_split *S, split_vals2 q, int n, const double *b1, const double *b2,
+                            const double *x1, const double *x2, double *r1, double *r2, int threads) {
+    if (S->f16) split_residual2_16(S, n, q.v1, q.v2, q.d1, q.d2, b1, b2, x1, x2, r1, r2, S->fofs, threads);
+    else split_residual2_32(S, n, q.v1, q.v2, q.d1, q.d2, b1, b2, x1, x2, r1, r2, S->fcol, threads);
+}
+
 static void split_free(sph_amg_split *S) {
     free(S->fs);
     free(S->fm);
@@ -580,6 +752,8 @@ static void split_free(sph_amg_split *S) {
     free(S->fofs);
     free(S->fval);
     free(S->fdinv);
+    free(S->fval2);
+    free(S->fdinv2);
     memset(S, 0, sizeof *S);
 }
 
@@ -719,6 +893,69 @@ static void vcycle(sph_amg *g, int l, const sph_csr *a, const double *b, double 
     for (int s = 0; s < sweeps; s++) gs_sweep(a, b, x, L->t, 1, threads);
 }
 
+/* y1 = a x1, y2 = a x2 (one matrix, two vectors: R and P) */
+static void matvec2(const sph_csr *a, const double *x1, const double *x2, double *y1, double *y2, int threads) {
+    int n = a->n;
+    const int *st = a->start, *col = a->col;
+    const double *val = a->val;
+#pragma omp parallel for schedule(static) num_threads(n < AMG_PAR_MIN ? 1 : threads)
+    for (int i = 0; i < n; i++) {
+        double s1 = 0.0, s2 = 0.0;
+        for (int k = st[i]; k < st[i + 1]; k++) {
+            int j = col[k];
+            double v = val[k];
+            s1 += v * x1[j];
+            s2 += v * x2[j];
+        }
+        y1[i] = s1;
+        y2[i] = s2;
+    }
+}
+
+/* The second system alone: the finest level's smoother takes its values for the cycle. */
+static void vcycle_second(sph_amg *g, int l, const sph_csr *a2, const double *b, double *x, int threads) {
+    sph_amg_split *S = &g->lev[0].S;
+    int swap = l == 0 && S->has2;
+    if (swap) {
+        float *v = S->fval;
+        double *d = S->fdinv;
+        S->fval = S->fval2;
+        S->fdinv = S->fdinv2;
+        vcycle(g, l, a2, b, x, threads);
+        S->fval = v;
+        S->fdinv = d;
+        return;
+    }
+    vcycle(g, l, a2, b, x, threads);
+}
+
+/* vcycle on two right-hand sides: the same steps, the structure of each level read once */
+static void vcycle2(sph_amg *g, int l, const sph_csr *a1, const sph_csr *a2, const double *b1, const double *b2,
+                    double *x1, double *x2, int threads) {
+    sph_amg_level *L = &g->lev[l];
+    int n = a1->n, sweeps = g->sweeps > 0 ? g->sweeps : 1;
+    if (l == g->levels - 1 || sweeps != 1 || L->S.n != n) { /* the coarsest, or no split copy: in turn */
+        vcycle(g, l, a1, b1, x1, threads);
+        vcycle_second(g, l, a2, b2, x2, threads);
+        return;
+    }
+    sph_amg_level *C = &g->lev[l + 1];
+    int visits = l >= (g->wcycle_from > 0 ? g->wcycle_from : 1) ? 2 : 1;
+    split_vals2 q = vals2(&L->S, l);
+    split_forward2(&L->S, q, n, b1, b2, x1, x2, L->r, L->r2, threads);
+    for (int v = 0; v < visits; v++) {
+        if (v > 0) split_residual2(&L->S, q, n, b1, b2, x1, x2, L->r, L->r2, threads);
+        matvec2(&L->R, L->r, L->r2, C->b, C->b2, threads);
+        vcycle2(g, l + 1, &C->A, &C->A, C->b, C->b2, C->x, C->x2, threads);
+        matvec2(&L->P, C->x, C->x2, L->r, L->r2, threads);
+        for (int i = 0; i < n; i++) {
+            x1[i] += L->r[i];
+            x2[i] += L->r2[i];
+        }
+    }
+    split_backward2(&L->S, q, n, b1, b2, x1, x2, L->t, L->t2, threads);
+}
+
 int sph_amg_set_ids(sph_amg *g, int n, const int *row_of, const int *id) {
     if (n > g->ridcap) {
         int cap = n + n / 4 + 16;
@@ -823,6 +1060,15 @@ void sph_amg_apply(sph_amg *g, const sph_csr *a, const double *r, double *z, int
     vcycle(g, 0, a, r, z, threads);
 }
 
+void sph_amg_apply2(sph_amg *g, const sph_csr *a1, const sph_csr *a2, const double *r1, const double *r2,
+                    double *z1, double *z2, int threads) {
+    vcycle2(g, 0, a1, a2, r1, r2, z1, z2, threads);
+}
+
+void sph_amg_apply_second(sph_amg *g, const sph_csr *a2, const double *r, double *z, int threads) {
+    vcycle_second(g, 0, a2, r, z, threads);
+}
+
 void sph_amg_free(sph_amg *g) {
     for (int l = 0; l < SPH_AMG_MAX_LEVELS; l++) {
         sph_amg_level *L = &g->lev[l];
@@ -833,8 +1079,13 @@ void sph_amg_free(sph_amg *g) {
         free(L->b);
         free(L->r);
         free(L->t);
+        free(L->x2);
+        free(L->b2);
+        free(L->r2);
+        free(L->t2);
         split_free(&L->S);
         L->x = L->b = L->r = L->t = 0;
+        L->x2 = L->b2 = L->r2 = L->t2 = 0;
         L->vcap = 0;
     }
     free(g->rid);

@@ -64,12 +64,19 @@ typedef struct sph_amg_split {
     int fcap_n;
     long fcap_nnz;
     int fblocks;        /* thread blocks the split was made for (1: plain Gauss-Seidel) */
+    /* a second system of the same structure (sph_amg_second: the viscous v component),
+     * its values and inverse diagonal; has2: they are of the current structure */
+    float *fval2;
+    double *fdinv2;
+    long fcap2_nnz;
+    int fcap2_n, has2;
 } sph_amg_split;
 
 typedef struct sph_amg_level {
     sph_csr A;          /* operator (level 0: the fine matrix with duplicate columns merged) */
     sph_csr P, R;       /* to the next level: n x nc and nc x n (unused on the coarsest) */
     double *x, *b, *r, *t; /* work vectors, n each */
+    double *x2, *b2, *r2, *t2; /* the same for a second right-hand side (sph_amg_apply2) */
     int vcap;
     sph_amg_split S;    /* the smoother's copy of the operator (level 0: of the caller's matrix) */
 } sph_amg_level;
@@ -112,6 +119,7 @@ typedef struct sph_amg {
 typedef struct sph_solver {
     int cap;
     double *r, *z, *q, *d;
+    double *r2, *z2, *q2, *d2, *x2; /* the second system of sph_solver_pcg2; x2: for the caller */
     sph_amg amg, amg2;      /* one hierarchy per system (pressure, viscous), kept across steps */
     sph_amg *cur;           /* the one in use                                             */
     int first_pending;      /* the next solve is the first since the last setup           */
@@ -170,8 +178,8 @@ struct sph_world {
     int *nb_count;
     int *nb_mid;               /* row i: fluid (and fluid ghost) neighbours in
                                   [nb_start[i], nb_mid[i]), walls in [nb_mid[i], nb_start[i+1]) */
-    double *cand;              /* per-thread candidate scratch of the build: 3 x (cand_cap + 1) */
-    int *cand_j;               /* per-thread: cand_cap + 1                          */
+    double *cand;              /* unused (was the build's candidate scratch; freed by world.c) */
+    int *cand_j;               /* per-thread candidate scratch of the build: 3 x (cand_cap + 1) */
     int cand_cap, cand_threads;
     sph_material mats[SPH_MAX_MATERIALS];
     int nmats;
@@ -275,6 +283,18 @@ int sph_solver_setup_reuse(sph_solver *s, const sph_csr *a, sph_linear_solver ki
  * cycle smooths with the old ones: still a valid preconditioner, a weaker one). 0, or -1
  * when out of memory (the solves then fall back to Jacobi). */
 int sph_solver_refresh(sph_solver *s, const sph_csr *a, int threads);
+/* A second system a2 of the same structure as a (same start and col arrays, other values)
+ * for sph_solver_pcg2: the hierarchy set up for a serves both, the finest level's smoother
+ * takes a2's values for a2's system (a's keep theirs). 0, or -1 when out of memory (then
+ * a2's system is smoothed with a's values: still a valid preconditioner). */
+int sph_solver_second(sph_solver *s, const sph_csr *a, const sph_csr *a2, int threads);
+/* Two independent systems a1 x1 = b1, a2 x2 = b2 of the same structure (a2 registered by
+ * sph_solver_second after the setup for a1), solved side by side: each iteration reads
+ * the structure once for both (CG's product and the multigrid cycle). Each system's
+ * iterates are those of sph_solver_pcg on it alone (the same arithmetic, bit for bit).
+ * res[0], res[1]: the two results. */
+void sph_solver_pcg2(sph_solver *s, const sph_csr *a1, const sph_csr *a2, const double *b1, const double *b2,
+                     double *x1, double *x2, double tol, int max_iter, int threads, sph_solve_result res[2]);
 /* Preconditioned conjugate gradients for SPD a: x holds the initial guess. The
  * preconditioner is the AMG V-cycle when the last sph_solver_setup was for a with AMG,
  * Jacobi otherwise. */
@@ -286,6 +306,15 @@ int sph_amg_setup(sph_amg *g, const sph_csr *a, int threads);
 /* z = one symmetric multigrid cycle applied to r (from z = 0); a is the fine matrix (values may
  * differ from those at setup, same structure and size). */
 void sph_amg_apply(sph_amg *g, const sph_csr *a, const double *r, double *z, int threads);
+/* The second system's values at the finest level's smoother (a2: the structure of the
+ * matrix of the setup, other values); -1 out of memory. */
+int sph_amg_second(sph_amg *g, const sph_csr *a2, int threads);
+/* The cycle on two right-hand sides at once: z1 for a1 (the setup's values), z2 for a2
+ * (sph_amg_second's), each as sph_amg_apply would give it. */
+void sph_amg_apply2(sph_amg *g, const sph_csr *a1, const sph_csr *a2, const double *r1, const double *r2,
+                    double *z1, double *z2, int threads);
+/* The cycle for a2's system alone (the finest smoother with sph_amg_second's values). */
+void sph_amg_apply_second(sph_amg *g, const sph_csr *a2, const double *r, double *z, int threads);
 /* Keep the hierarchy for a new fine matrix a of the same particles (rows renumbered,
  * some come and go): the prolongation's rows follow their particles' ids (row r: particle
  * id[row_of[r]]; a new row gets none), the coarse operators stay. 0; 1 when g holds no

@@ -185,22 +185,35 @@ static int reserve_candidates(sph_world *w) {
     }
     if (most <= w->cand_cap && w->threads <= w->cand_threads) return 0;
     int cap = most + most / 4 + 64, nt = w->threads;
-    double *c = realloc(w->cand, sizeof(double) * 3 * (size_t)(cap + 1) * (size_t)nt);
-    if (c) w->cand = c;
-    int *j = realloc(w->cand_j, sizeof(int) * (size_t)(cap + 1) * (size_t)nt);
-    if (j) w->cand_j = j;
-    if (!c || !j) return sph_world_fail(w, "out of memory (neighbour candidates)");
+    int *j = realloc(w->cand_j, sizeof(int) * 3 * (size_t)(cap + 1) * (size_t)nt);
+    if (!j) return sph_world_fail(w, "out of memory (neighbour candidates)");
+    w->cand_j = j;
     w->cand_cap = cap;
     w->cand_threads = nt;
     return 0;
 }
 
 /* Neighbour lists of the rows (fluid and active walls). Positions are first copied in cell
- * order (cx, cy), so that the distance tests run over contiguous arrays (vectorised); the
- * pairs within the support are compacted into per-thread scratch, fluid neighbours (real
- * or ghost) first and walls after, then the kernel gradient of every pair is computed in
- * one vectorised loop. The count pass sizes the lists (no allocation once they are large
- * enough). */
+ * order (cx, cy), so that the distance tests run over contiguous arrays (vectorised). A
+ * count pass sizes the lists (no allocation once they are large enough); the fill pass
+ * then, per row: (1) a vectorised loop classifies every candidate (0: out of the support
+ * or i itself, 1: fluid neighbour, 2: wall); (2) a branch-free compaction writes the
+ * candidate indices of the fluid neighbours to one list and of the walls to another (the
+ * order met); (3) one loop over the neighbours, fluid first, computes the kernel gradient of
+ * every pair from the cell-order positions.
+ * It was one compaction loop writing j, dx, dy and r^2 of every candidate (a rejected one
+ * to a spare slot): 4 stores and the tests, not vectorised, for each of ~137 candidates a
+ * particle (the 3 x 3 cells of the support's size) of which ~25 are kept. The lists are bit
+ * for bit the same. Measured on the squeeze (Bn = 5, M = 800, Re = 1) at 1.05e5
+ * particles, 2.66e6 pairs, 1 thread, the build alone (a micro-benchmark calling it 15 times
+ * on the world of step 4; the best of 5 interleaved medians, machine shared and loaded):
+ * 37.5 -> 32.9 ms (14 -> 12.4 ns a pair). Now ~50 % of the fill pass is the kernel loop
+ * (a square root and a division a pair), ~27 % the compaction, ~11 % the vectorised
+ * distance tests; the count pass is ~13 % of the build. Not done: one pass instead of two
+ * (filling per-thread buffers then copying them writes the 28 bytes a pair twice, which
+ * costs about what the count pass does), half-size cells (5 x 5 minus the corners: ~80
+ * candidates instead of 137, but a different order of the pairs, so round-off changes
+ * everywhere). */
 int sph_neighbours_build(sph_world *w) {
     if (bin_all(w)) return -1;
     mark_rows(w);
@@ -256,14 +269,19 @@ int sph_neighbours_build(sph_world *w) {
         w->nb_cap = cap;
     }
 
+    /* the counts are summed up: cnt takes each real particle's place in the cell order */
+    int *kof = cnt;
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (int k = 0; k < nt; k++)
+        if (items[k] < n) kof[items[k]] = k;
     double kc = -5.0 * 7.0 / (478.0 * SPH_PI * h * h * h), hinv = 1.0 / h; /* as in sph_kernel_deriv */
     int cap = w->cand_cap;
 #pragma omp parallel num_threads(threads)
     {
         int t = omp_get_thread_num();
-        /* cap + 1 slots per array: the last one takes the rejected candidates */
-        int *cj = w->cand_j + (size_t)t * (cap + 1);
-        double *cdx = w->cand + (size_t)t * 3 * (cap + 1), *cdy = cdx + cap + 1, *cr2 = cdy + cap + 1;
+        /* per thread: the candidates' classes, the fluid and the wall neighbours' candidate
+         * indices (k: cell order) */
+        int *cls = w->cand_j + (size_t)t * 3 * (cap + 1), *kf_ = cls + cap + 1, *kw_ = kf_ + cap + 1;
 #pragma omp for schedule(dynamic, 256)
         for (int i = 0; i < n; i++) {
             if (!w->active[i]) {
@@ -272,46 +290,50 @@ int sph_neighbours_build(sph_world *w) {
             }
             double xi = w->x[i], yi = w->y[i];
             int k0[3], k1[3], nr = candidate_runs(w, i, k0, k1);
-            /* compaction: fluid from the front, walls from the back of the scratch */
-            int nf = 0, nw = 0;
-            for (int r = 0; r < nr; r++)
-                for (int k = k0[r]; k < k1[r]; k++) {
-                    /* branch-free (a kept candidate is not predictable): every candidate
-                     * is written, a rejected one to the spare slot cap */
-                    double dx = xi - cx[k], dy = yi - cy[k], r2 = dx * dx + dy * dy;
-                    int j = items[k];
-                    int keep = (r2 < r2max) & (j != i), kf = keep & cfl[k], kw = keep & !cfl[k];
-                    int e = cap + kf * (nf - cap) + kw * (-1 - nw);
-                    nf += kf;
-                    nw += kw;
-                    cj[e] = j;
-                    cdx[e] = dx;
-                    cdy[e] = dy;
-                    cr2[e] = r2;
+            int nc = 0, ki = kof[i];
+            for (int r = 0; r < nr; r++) {
+                int a = k0[r], b = k1[r];
+                int *cr = cls + nc - a;
+#pragma omp simd
+                for (int k = a; k < b; k++) {
+                    double dx = xi - cx[k], dy = yi - cy[k];
+                    cr[k] = dx * dx + dy * dy < r2max;
                 }
+                if (ki >= a && ki < b) cr[ki] = 0; /* i itself */
+                nc += b - a;
+            }
+            /* compaction (branch-free: a kept candidate is not predictable) */
+            int nf = 0, nw = 0, q0 = 0;
+            for (int r = 0; r < nr; r++) {
+                int a = k0[r], b = k1[r];
+                const int *cr = cls + q0 - a;
+                for (int k = a; k < b; k++) {
+                    int in = cr[k], fl = cfl[k];
+                    kf_[nf] = k;
+                    kw_[nw] = k;
+                    nf += in & fl;
+                    nw += in & !fl;
+                }
+                q0 += b - a;
+            }
+            for (int q = 0; q < nw; q++) kf_[nf + q] = kw_[q]; /* walls after the fluid */
             int s = w->nb_start[i];
             w->nb_mid[i] = s + nf;
-            for (int q = 0; q < nw; q++) { /* walls after the fluid, in the order met */
-                int e = cap - 1 - q;
-                cj[nf + q] = cj[e];
-                cdx[nf + q] = cdx[e];
-                cdy[nf + q] = cdy[e];
-                cr2[nf + q] = cr2[e];
-            }
             int m = nf + nw;
             int *nj = w->nb_j + s;
             double *ngx = w->nb_gx + s, *ngy = w->nb_gy + s, *nf_ = w->nb_f + s;
             double divr = 0.0, mxx = 0.0, mxy = 0.0, myy = 0.0;
 #pragma omp simd reduction(+ : divr, mxx, mxy, myy)
             for (int q = 0; q < m; q++) {
-                double dx = cdx[q], dy = cdy[q], r2 = cr2[q];
+                int k = kf_[q];
+                double dx = xi - cx[k], dy = yi - cy[k], r2 = dx * dx + dy * dy;
                 double r = sqrt(r2), sq = r * hinv;
                 double dw = kc * (sph_kernel_pos4(3.0 - sq) - 6.0 * sph_kernel_pos4(2.0 - sq) +
                                   15.0 * sph_kernel_pos4(1.0 - sq));
                 /* one division for g = dW/dr / r and F = r dW/dr / (r^2 + eps^2) */
                 double re = r2 + eps2, inv = 1.0 / (r > 0.0 ? r * re : 1.0);
                 double g = r > 0.0 ? dw * re * inv : 0.0;
-                int j = cj[q];
+                int j = items[k];
                 nj[q] = j;
                 ngx[q] = g * dx;
                 ngy[q] = g * dy;

@@ -44,10 +44,12 @@ void sph_csr_free(sph_csr *a) {
 
 void sph_csr_matvec(const sph_csr *a, const double *x, double *y, int threads) {
     int n = a->n;
+    const int *st = a->start, *col = a->col; /* in locals: not reloaded after each store to y */
+    const double *val = a->val;
 #pragma omp parallel for schedule(static) num_threads(threads)
     for (int i = 0; i < n; i++) {
         double s = 0.0;
-        for (int k = a->start[i]; k < a->start[i + 1]; k++) s += a->val[k] * x[a->col[k]];
+        for (int k = st[i]; k < st[i + 1]; k++) s += val[k] * x[col[k]];
         y[i] = s;
     }
 }
@@ -56,7 +58,10 @@ int sph_solver_reserve(sph_solver *s, int n) {
     if (n <= s->cap) return 0;
     int cap = n + n / 4 + 16;
     if (sph_grow((void **)&s->r, sizeof(double), cap) || sph_grow((void **)&s->z, sizeof(double), cap) ||
-        sph_grow((void **)&s->q, sizeof(double), cap) || sph_grow((void **)&s->d, sizeof(double), cap))
+        sph_grow((void **)&s->q, sizeof(double), cap) || sph_grow((void **)&s->d, sizeof(double), cap) ||
+        sph_grow((void **)&s->r2, sizeof(double), cap) || sph_grow((void **)&s->z2, sizeof(double), cap) ||
+        sph_grow((void **)&s->q2, sizeof(double), cap) || sph_grow((void **)&s->d2, sizeof(double), cap) ||
+        sph_grow((void **)&s->x2, sizeof(double), cap))
         return -1;
     s->cap = cap;
     return 0;
@@ -67,7 +72,13 @@ void sph_solver_free(sph_solver *s) {
     free(s->z);
     free(s->q);
     free(s->d);
+    free(s->r2);
+    free(s->z2);
+    free(s->q2);
+    free(s->d2);
+    free(s->x2);
     s->r = s->z = s->q = s->d = 0;
+    s->r2 = s->z2 = s->q2 = s->d2 = s->x2 = 0;
     s->cap = 0;
     sph_amg_free(&s->amg);
     sph_amg_free(&s->amg2);
@@ -102,7 +113,13 @@ static sph_amg *slot_for(sph_solver *s, const sph_csr *a) {
  * step before). Tried and dropped for it: keeping the aggregates and prolongations (moved
  * by id) and recomputing only the coarse operators from the new values: 11 iterations a
  * step instead of 10 with the hierarchy of up to 20 steps before, setup 76 -> 56 ms but
- * solves 116 -> 131 ms a step (loaded machine, 3 interleaved runs): no net gain. */
+ * solves 116 -> 131 ms a step (loaded machine, 3 interleaved runs): no net gain. Not tried,
+ * from the setup's parts (amg.c, spgemm): a numeric-only re-setup (the aggregates and the
+ * strong graph kept, the prolongation's weights and the Galerkin products recomputed into
+ * the old patterns) saves at most the strength and aggregation passes, ~9 % of the
+ * viscous setup (4-5 ms a step at 1e5 rows): the products and the smoothers' copies, ~65 %,
+ * are redone either way, and the fine matrix's pattern changes every step (the neighbour
+ * lists), so A P's pattern cannot be kept. */
 #define REUSE_MAX_AGE 20
 #define REUSE_SLACK 1
 #define REUSE_MAX_CHANGE 0.05
@@ -171,6 +188,25 @@ static double dot(const double *a, const double *b, int n, int threads) {
     return s;
 }
 
+/* y = a x and x . y in one pass (CG's product and its dot product d . q: the same sums
+ * as sph_csr_matvec and dot, in the same order). With the arrays in locals, one CG
+ * iteration on the viscous system at 1.01e5 rows (AMG, 1 thread) 7.88 -> 7.28 ms
+ * (medians of 5 interleaved runs, shared machine). */
+static double matvec_dot(const sph_csr *a, const double *x, double *y, int threads) {
+    int n = a->n;
+    const int *st = a->start, *col = a->col;
+    const double *val = a->val;
+    double s = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : s) num_threads(threads)
+    for (int i = 0; i < n; i++) {
+        double t = 0.0;
+        for (int k = st[i]; k < st[i + 1]; k++) t += val[k] * x[col[k]];
+        y[i] = t;
+        s += x[i] * t;
+    }
+    return s;
+}
+
 /* z = M^-1 r */
 static void precondition(sph_solver *s, const sph_csr *a, const double *r, double *z, int amg, int threads) {
     int n = a->n;
@@ -204,8 +240,7 @@ sph_solve_result sph_solver_pcg(sph_solver *s, const sph_csr *a, const double *b
     double rnorm = sqrt(dot(r, r, n, threads));
     int it = 0;
     while (rnorm > tol * bnorm && it < max_iter) {
-        sph_csr_matvec(a, d, q, threads);
-        double dq = dot(d, q, n, threads);
+        double dq = matvec_dot(a, d, q, threads);
         if (!(dq > 0.0)) break; /* not SPD, or breakdown: reported as not converged */
         double alpha = rz / dq;
         double rr = 0.0, rz1 = 0.0;
@@ -251,4 +286,160 @@ sph_solve_result sph_solver_pcg(sph_solver *s, const sph_csr *a, const double *b
     res.converged = isfinite(rnorm) && rnorm <= tol * bnorm;
     s->solve_time += omp_get_wtime() - t0;
     return res;
+}
+
+int sph_solver_second(sph_solver *s, const sph_csr *a, const sph_csr *a2, int threads) {
+    if (s->amg_for != a || !s->cur || s->cur->levels == 0) return 0;
+    double t0 = omp_get_wtime();
+    int rc = sph_amg_second(s->cur, a2, threads);
+    s->setup_time += omp_get_wtime() - t0;
+    return rc;
+}
+
+/* Two systems side by side (sph_solver_pcg2). The per-system steps are those of
+ * sph_solver_pcg's AMG branch, in the same order; the products and the cycle take both
+ * systems in one pass while both iterate, one alone once the other has stopped.
+ * The cycle's sweeps are bound by the instructions per nonzero more than by memory: the
+ * two systems in one loop share the column loads and the loop, and their two chains of
+ * additions overlap. Measured on the squeeze's viscous systems (u and v at step 4, Bn = 5,
+ * M = 800, Re = 1, 1.01e5 rows, from zero: 6 and 10 iterations; a micro-benchmark timing
+ * both ways alternately in one process, medians of 11, machine shared): the pair's solves
+ * 89.6 / 95.1 / 104.4 ms side by side against 115.8 / 120.8 / 127.4 ms in turn (three
+ * runs), -21 %; on 2 threads 86.9 against 105.1 ms. */
+typedef struct pcg_state {
+    const sph_csr *a;
+    const double *b;
+    double *x, *r, *z, *q, *d;
+    double bnorm, rnorm, rz, rz1, alpha;
+    int it, on; /* on: still iterating */
+    sph_solve_result res;
+} pcg_state;
+
+/* y1 = a1 x1, y2 = a2 x2 for two matrices of the same structure, and the dot products
+ * x1 . y1, x2 . y2 (as matvec_dot) */
+static void matvec_pair_dot(const sph_csr *a1, const sph_csr *a2, const double *x1, const double *x2, double *y1,
+                            double *y2, double dots[2], int threads) {
+    int n = a1->n;
+    const int *st = a1->start, *col = a1->col;
+    const double *v1 = a1->val, *v2 = a2->val;
+    double d1 = 0.0, d2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : d1, d2) num_threads(threads)
+    for (int i = 0; i < n; i++) {
+        double s1 = 0.0, s2 = 0.0;
+        for (int k = st[i]; k < st[i + 1]; k++) {
+            int j = col[k];
+            s1 += v1[k] * x1[j];
+            s2 += v2[k] * x2[j];
+        }
+        y1[i] = s1;
+        y2[i] = s2;
+        d1 += x1[i] * s1;
+        d2 += x2[i] * s2;
+    }
+    dots[0] = d1;
+    dots[1] = d2;
+}
+
+void sph_solver_pcg2(sph_solver *s, const sph_csr *a1, const sph_csr *a2, const double *b1, const double *b2,
+                     double *x1, double *x2, double tol, int max_iter, int threads, sph_solve_result res[2]) {
+    int n = a1->n;
+    int amg = s->amg_for == a1 && s->cur && s->cur->levels > 0 && s->cur->fine_n == n;
+    if (!amg || a2->n != n || a2->start != a1->start || a2->col != a1->col) { /* one after the other */
+        res[0] = sph_solver_pcg(s, a1, b1, x1, tol, max_iter, threads);
+        res[1] = sph_solver_pcg(s, a2, b2, x2, tol, max_iter, threads);
+        return;
+    }
+    double t0 = omp_get_wtime();
+    pcg_state P[2] = {{a1, b1, x1, s->r, s->z, s->q, s->d, 0, 0, 0, 0, 0, 0, 0, {0, 0.0, 1}},
+                      {a2, b2, x2, s->r2, s->z2, s->q2, s->d2, 0, 0, 0, 0, 0, 0, 0, {0, 0.0, 1}}};
+    for (int c = 0; c < 2; c++) {
+        pcg_state *p = &P[c];
+        s->solves++;
+        p->bnorm = sqrt(dot(p->b, p->b, n, threads));
+        if (p->bnorm == 0.0) {
+            for (int i = 0; i < n; i++) p->x[i] = 0.0;
+            continue;
+        }
+        sph_csr_matvec(p->a, p->x, p->q, threads);
+        for (int i = 0; i < n; i++) p->r[i] = p->b[i] - p->q[i];
+    }
+    /* the first preconditioning */
+    int need0 = P[0].bnorm != 0.0, need1 = P[1].bnorm != 0.0;
+    if (need0 && need1) sph_amg_apply2(s->cur, a1, a2, P[0].r, P[1].r, P[0].z, P[1].z, threads);
+    else if (need0) sph_amg_apply(s->cur, a1, P[0].r, P[0].z, threads);
+    else if (need1) sph_amg_apply_second(s->cur, a2, P[1].r, P[1].z, threads);
+    for (int c = 0; c < 2; c++) {
+        pcg_state *p = &P[c];
+        if (p->bnorm == 0.0) continue;
+        for (int i = 0; i < n; i++) p->d[i] = p->z[i];
+        p->rz = dot(p->r, p->z, n, threads);
+        p->rnorm = sqrt(dot(p->r, p->r, n, threads));
+        p->on = p->rnorm > tol * p->bnorm && p->it < max_iter;
+    }
+    while (P[0].on || P[1].on) {
+        double dqs[2] = {0.0, 0.0};
+        if (P[0].on && P[1].on) matvec_pair_dot(a1, a2, P[0].d, P[1].d, P[0].q, P[1].q, dqs, threads);
+        else if (P[0].on) dqs[0] = matvec_dot(a1, P[0].d, P[0].q, threads);
+        else dqs[1] = matvec_dot(a2, P[1].d, P[1].q, threads);
+        int pre[2] = {0, 0};
+        for (int c = 0; c < 2; c++) {
+            pcg_state *p = &P[c];
+            if (!p->on) continue;
+            double *x = p->x, *r = p->r, *q = p->q, *d = p->d;
+            double dq = dqs[c];
+            if (!(dq > 0.0)) { /* not SPD, or breakdown: reported as not converged */
+                p->on = 0;
+                continue;
+            }
+            double alpha = p->rz / dq, rr = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : rr) num_threads(threads)
+            for (int i = 0; i < n; i++) {
+                x[i] += alpha * d[i];
+                r[i] -= alpha * q[i];
+                rr += r[i] * r[i];
+            }
+            p->it++;
+            if (!(sqrt(rr) > tol * p->bnorm)) {
+                p->rnorm = sqrt(rr);
+                p->on = 0;
+                continue;
+            }
+            p->rnorm = sqrt(rr);
+            pre[c] = 1;
+        }
+        if (pre[0] && pre[1]) sph_amg_apply2(s->cur, a1, a2, P[0].r, P[1].r, P[0].z, P[1].z, threads);
+        else if (pre[0]) sph_amg_apply(s->cur, a1, P[0].r, P[0].z, threads);
+        else if (pre[1]) sph_amg_apply_second(s->cur, a2, P[1].r, P[1].z, threads);
+        for (int c = 0; c < 2; c++) {
+            pcg_state *p = &P[c];
+            if (!pre[c]) continue;
+            double *z = p->z, *d = p->d;
+            double rz1 = dot(p->r, z, n, threads);
+            if (!(rz1 > 0.0)) { /* preconditioner not positive definite: not converged */
+                p->on = 0;
+                continue;
+            }
+            double beta = rz1 / p->rz;
+            p->rz = rz1;
+#pragma omp parallel for schedule(static) num_threads(threads)
+            for (int i = 0; i < n; i++) d[i] = z[i] + beta * d[i];
+            p->on = p->rnorm > tol * p->bnorm && p->it < max_iter;
+        }
+    }
+    for (int c = 0; c < 2; c++) {
+        pcg_state *p = &P[c];
+        if (p->bnorm == 0.0) {
+            res[c] = (sph_solve_result){0, 0.0, 1};
+            continue;
+        }
+        res[c].iterations = p->it;
+        res[c].residual = p->rnorm / p->bnorm;
+        res[c].converged = isfinite(p->rnorm) && p->rnorm <= tol * p->bnorm;
+    }
+    if (s->first_pending) {
+        s->first_pending = 0;
+        s->cur->it_recent = P[0].it;
+        if (s->cur->it_fresh < 0) s->cur->it_fresh = P[0].it;
+    }
+    s->solve_time += omp_get_wtime() - t0;
 }

@@ -241,17 +241,49 @@ int sph_viscous_implicit(sph_world *w, double dt) {
 
     int iters = 0;
     double resid = 0.0;
-    for (int comp = 0; comp < 2; comp++) {
-        visc_assemble(w, dt, comp);
-        /* one multigrid setup for both components (their matrices differ only in the
+    if (w->par.solver == SPH_SOLVER_AMG) {
+        /* both components at once: u's system in A, v's in a view of A's structure with
+         * v's values (visc_assemble keeps them in vval, vdiag, vrhs), its solution in the
+         * solver's x2. One multigrid setup for both (their matrices differ only in the
          * entries of mirror images, and the hierarchy stays a valid preconditioner); the
-         * finest level's smoother takes v's values (with u's: 10.2 -> 13.8 iterations a
-         * step at 10^5 particles, the images' entries change sign) */
-        if (comp == 0 && sph_solver_setup(&w->solver, A, w->par.solver, w->threads))
+         * finest level's smoother takes each component's own values (v with u's: 10.2 ->
+         * 13.8 iterations a step at 10^5 particles, the images' entries change sign).
+         * sph_solver_pcg2 reads the structure once for both in CG's product and the cycle,
+         * each component's iterates as when solved alone (the same figures bit for bit). */
+        visc_assemble(w, dt, 0);
+        sph_csr V2 = *A;
+        V2.val = w->vval;
+        V2.diag = w->vdiag;
+        double *x2 = w->solver.x2;
+        for (int r = 0; r < nrows; r++) x2[r] = w->v[w->vrow_of[r]];
+        if (sph_solver_setup(&w->solver, A, w->par.solver, w->threads))
             return sph_world_fail(w, "viscous solver: multigrid setup failed at step %ld (t = %g, %d unknowns): "
                                   "out of memory or a coarse operator not positive definite", w->steps, w->t, nrows);
-        if (comp == 1 && sph_solver_refresh(&w->solver, A, w->threads))
+        if (sph_solver_second(&w->solver, A, &V2, w->threads))
             return sph_world_fail(w, "viscous solver: out of memory at step %ld (%d unknowns)", w->steps, nrows);
+        sph_solve_result res[2];
+        sph_solver_pcg2(&w->solver, A, &V2, w->vb, w->vrhs, w->vsol, x2, w->par.tol, w->par.max_iter, w->threads,
+                        res);
+        for (int comp = 0; comp < 2; comp++) {
+            if (!res[comp].converged)
+                return sph_world_fail(w,
+                                      "viscous solver (%s) did not converge at step %ld (t = %g, dt = %g): "
+                                      "relative residual %.3g after %d iterations (tolerance %g, %d unknowns)",
+                                      comp ? "v" : "u", w->steps, w->t, dt, res[comp].residual,
+                                      res[comp].iterations, w->par.tol, nrows);
+            iters += res[comp].iterations;
+            if (res[comp].residual > resid) resid = res[comp].residual;
+        }
+        for (int r = 0; r < nrows; r++) {
+            w->us[w->vrow_of[r]] = w->vsol[r];
+            w->vs[w->vrow_of[r]] = x2[r];
+        }
+        sph_lap(w, SPH_PHASE_VISC_SOLVE);
+    }
+    for (int comp = 0; comp < 2 && w->par.solver != SPH_SOLVER_AMG; comp++) { /* Jacobi: in turn */
+        visc_assemble(w, dt, comp);
+        if (comp == 0 && sph_solver_setup(&w->solver, A, w->par.solver, w->threads))
+            return sph_world_fail(w, "viscous solver: setup failed at step %ld (%d unknowns)", w->steps, nrows);
         sph_solve_result res =
             sph_solver_pcg(&w->solver, A, w->vb, w->vsol, w->par.tol, w->par.max_iter, w->threads);
         if (!res.converged)
