@@ -178,7 +178,6 @@ struct sph_world {
     int *nb_count;
     int *nb_mid;               /* row i: fluid (and fluid ghost) neighbours in
                                   [nb_start[i], nb_mid[i]), walls in [nb_mid[i], nb_start[i+1]) */
-    double *cand;              /* unused (was the build's candidate scratch; freed by world.c) */
     int *cand_j;               /* per-thread candidate scratch of the build: 3 x (cand_cap + 1) */
     int cand_cap, cand_threads;
     sph_material mats[SPH_MAX_MATERIALS];

@@ -116,7 +116,6 @@ void sph_world_free(sph_world *w) {
     for (size_t k = 0; k < sizeof o / sizeof *o; k++) free(*o[k]);
     int **oi[] = {&w->cell_start, &w->cell_items, &w->nb_start, &w->nb_j, &w->row_of, &w->vrow_of};
     for (size_t k = 0; k < sizeof oi / sizeof *oi; k++) free(*oi[k]);
-    free(w->cand);
     free(w->cand_j);
     free(w->gsx);
     free(w->gsy);
