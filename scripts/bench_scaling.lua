@@ -8,7 +8,7 @@
 -- Run by scripts/bench.sh (`make bench`); by hand:
 --   build/sph scripts/bench_scaling.lua [max_n=120000] [runs=3] [steps=..] [warmup=3]
 --                                       [threads=1,2] [dx=0.0025] [out=out/bench]
---                                       [density_limit=0.008]
+--                                       [density_limit=0.008] [density_solve_tol=1e-3]
 -- density_limit is passed to sph.world (0: no passes beyond density_passes; the 10^6 row's
 -- three timed steps follow the impulsive start closely, where the default's extra passes
 -- double the pressure-type iterations: 24.0 -> 51.3 a step).
@@ -45,7 +45,8 @@ local median = require("sph.bench").median
 
 local function build(k, nthreads)
   return squeeze.build{ dx = 1 / k, Re = 1, Bn = 5, M = 800, mode = "velocity", V = 1,
-                        world = { threads = nthreads, max_iter = 100000, density_limit = o.density_limit } }
+                        world = { threads = nthreads, max_iter = 100000, density_limit = o.density_limit,
+                                  density_solve_tol = o.density_solve_tol } }
 end
 
 -- particles (fluid + wall) of each rung, from a world that is built and dropped

@@ -71,6 +71,9 @@ typedef struct sph_params {
     double density_diffusion; /* kappa: each step rho_i += kappa h^2 (compact Laplacian
                               of rho)_i over interior fluid, a filter of the continuity
                               density's particle-scale modes (thin films); default 0 */
+    double density_solve_tol; /* relative tolerance of the density-correction solves;
+                              default 1e-3 (the density follows the displacement made,
+                              so phi need not be exact)                               */
 } sph_params;
 
 #define SPH_MAX_DENSITY_PASSES 10

@@ -26,6 +26,7 @@ T.case("world arguments", function()
   T.checkerror("density_tol", "density_tol = 1", sph.world, { dx = 0.1, density_tol = 1 })
   T.checkerror("density_limit", "density_limit = -0.1", sph.world, { dx = 0.1, density_limit = -0.1 })
   T.checkerror("density_diffusion", "density_diffusion = 0.3", sph.world, { dx = 0.1, density_diffusion = 0.3 })
+  T.checkerror("density_solve_tol", "density_solve_tol = 0", sph.world, { dx = 0.1, density_solve_tol = 0 })
   T.checkerror("density_relax", "density_relax = 2", sph.world, { dx = 0.1, density_relax = 2 })
   T.checkerror("table expected", "world needs a table", sph.world, 3)
 end)
@@ -219,7 +220,7 @@ T.case("solver = amg and jacobi agree", function()
   local r = {}
   for _, s in ipairs{ "jacobi", "amg" } do
     local w, top = squeeze.build{ dx = 1 / 20, Re = 1, Bn = 5, M = 800, mode = "velocity", V = 1,
-                                  world = { threads = 1, solver = s } }
+                                  world = { threads = 1, solver = s, density_solve_tol = 1e-6 } }
     for _ = 1, 20 do w:step() end
     r[s] = { f = top.force, p = w:field("p"), it = w:stats().solver_iterations_total }
     w:close()
