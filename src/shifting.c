@@ -4,7 +4,14 @@
  *   grad C_i = sum_j V_j (1 + R (W_ij / W(dx))^4) grad_i W_ij  (walls included),
  * U the largest fluid speed, A the `shifting` coefficient. Near a free surface (position
  * divergence below surface_div + 0.3) only the component tangent to the surface is kept,
- * so shifting never moves the surface itself. The velocity is carried to the new position
+ * so shifting never moves the surface itself. The surface normal is that of the plain
+ * kernel sum, n = sum_j V_j grad W_ij / |...|, not grad C: with the anti-clustering term in
+ * it, a surface particle's "normal" pointed at the particle crowding it, and removing that
+ * component removed the very push that parts them. Clumps of 3-4 surface particles within
+ * 0.1 dx then sat at the contact lines and hid exposed edge particles from the free-surface
+ * test; with the plain normal the stability suite's Bn = 100 load and Re = 0.01 cases miss
+ * none (1 each before), Re = 1000 still one (a particle with a spray particle 1.6 dx in
+ * front of it), M = 1e4 and the paper's case unchanged in outcome. The velocity is carried to the new position
  * by a first-order Taylor step, u_i += (dr_i . grad) u_i.
  * The R term (Lind et al. 2012, R = 0.2) pushes apart pairs closer than dx. Without it a
  * lattice stretched by the squeeze's extension stays uniform in concentration (grad C = 0)
@@ -47,11 +54,11 @@ void sph_shifting_apply(sph_world *w, double dt) {
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) continue;
-        double cx = 0.0, cy = 0.0, xi = w->x[i], yi = w->y[i];
+        double cx = 0.0, cy = 0.0, gx = 0.0, gy = 0.0, xi = w->x[i], yi = w->y[i];
         const int *nj = w->nb_j;
         const double *x = w->x, *y = w->y, *ngx = w->nb_gx, *ngy = w->nb_gy;
         int k0 = w->nb_start[i], k1 = w->nb_start[i + 1];
-#pragma omp simd reduction(+ : cx, cy)
+#pragma omp simd reduction(+ : cx, cy, gx, gy)
         for (int k = k0; k < k1; k++) {
             int j = nj[k];
             double ddx = xi - x[j], ddy = yi - y[j];
@@ -62,12 +69,14 @@ void sph_shifting_apply(sph_world *w, double dt) {
             double v = vol[j] * (1.0 + R * q * q);
             cx += v * ngx[k];
             cy += v * ngy[k];
+            gx += vol[j] * ngx[k];
+            gy += vol[j] * ngy[k];
         }
         double sx = -D * cx, sy = -D * cy;
-        if (w->divr[i] < near) { /* tangential only: n = grad C / |grad C| */
-            double c = hypot(cx, cy);
+        if (w->divr[i] < near) { /* tangential only: n = sum V grad W / |...| */
+            double c = hypot(gx, gy);
             if (c > 0) {
-                double nx = cx / c, ny = cy / c, dn = sx * nx + sy * ny;
+                double nx = gx / c, ny = gy / c, dn = sx * nx + sy * ny;
                 sx -= dn * nx;
                 sy -= dn * ny;
             }

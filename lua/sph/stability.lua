@@ -39,8 +39,8 @@ end
 -- is the second layer, not the edge); rows that touch a plate (within dx of its face: the
 -- contact line, whose particles have the wall in their support and are held by it, not at
 -- p = 0) are not checked. The half sample's other sides are the symmetry plane and the
--- plates, with no free surface. Returns the counts inside and missing and the list of the
--- inside particles' indices.
+-- plates, with no free surface. Returns the counts inside and missing and the lists of the
+-- inside particles' and of the missing ones' indices.
 function S.surface_check(w, dx, y_lo, y_hi)
   local x, y, s = w:field("x"), w:field("y"), w:field("surface")
   -- the outline is the body's, not the spray's: a particle with fewer than 3 others within
@@ -102,7 +102,7 @@ function S.surface_check(w, dx, y_lo, y_hi)
     end
     return nf == 8
   end
-  local inside, missing, list = 0, 0, {}
+  local inside, missing, list, mlist = 0, 0, {}, {}
   for k = 1, #x do
     local r = math.floor(y[k] / dx)
     local far = math.max(outer[r - 1] or -math.huge, outer[r] or -math.huge, outer[r + 1] or -math.huge)
@@ -113,10 +113,10 @@ function S.surface_check(w, dx, y_lo, y_hi)
         local ax, ay = x[q] - x[k], math.abs(y[q] - y[k])
         if q ~= k and ax > ay and ax * ax + ay * ay < (1.5 * dx) ^ 2 then exposed = false break end
       end
-      if exposed then missing = missing + 1 end
+      if exposed then missing = missing + 1; mlist[#mlist + 1] = k end
     end
   end
-  return inside, missing, list
+  return inside, missing, list, mlist
 end
 
 -- Runs case c to t_end (default c.t_end); opts: dx (default 1/40), threads, world (more
