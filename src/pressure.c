@@ -524,7 +524,7 @@ static int density_pass(sph_world *w, int pass);
  * x 0.990 at kappa = 0.1). Measured on the long thin-film squeeze (square sample, V = 1,
  * Re = 1, dx = 1/40), which fails near h = 0.24 without it (a checkerboard of the
  * continuity density in the stagnation zone): kappa = 0.05 reaches h = 0.15 (max density
- * error under 1 % down to h = 0.186, 3.9 % at the end; F h^6 0.71-0.78 of lubrication
+ * error under 1 % down to h = 0.19, 2.8-3.9 % at the end; F h^6 0.71-0.86 of lubrication
  * over h 0.25-0.15, a/h 8-22); kappa = 0.1 stopped at h = 0.158 (dt collapsed after a
  * pressure jump with the density error at 0.5 %; an earlier variant of the same formula,
  * with F at the end-of-step positions, reached 0.15: where it fails is round-off-sensitive);
