@@ -84,9 +84,12 @@ T.case("Newtonian squeeze under a constant load against lubrication", function()
   -- speed, as in the constant-velocity case at Re = 0.1 (0.68-0.72). dx = 1/40 fails near
   -- h = 0.43 (a fluid particle goes through the upper plate at t = 0.51). Tolerances 0.06
   -- on each error (a loaded run integrates the force's noise into h), 0.6 on the order.
-  T.close(rs[1].error, 0.639, 0.06, "Newtonian squeeze F = 20, dx = 1/20: error within 0.06 of 0.639")
-  T.close(rs[2].error, 0.535, 0.06, "Newtonian squeeze F = 20, dx = 1/30: error within 0.06 of 0.535")
-  T.close(order, 0.44, 0.6, "Newtonian squeeze F = 20: observed order within 0.6 of 0.44")
+  -- Session 6 (density_limit, density_solve_tol, shifting's plain surface normal, the
+  -- 1.5 dx free-surface cone): errors 0.5934 / 0.4813 (order 0.52) with -O2, 0.5916 /
+  -- 0.4736 (0.55) under make check's -O1 sanitizer build: the references below are those.
+  T.close(rs[1].error, 0.593, 0.06, "Newtonian squeeze F = 20, dx = 1/20: error within 0.06 of 0.593")
+  T.close(rs[2].error, 0.478, 0.06, "Newtonian squeeze F = 20, dx = 1/30: error within 0.06 of 0.478")
+  T.close(order, 0.53, 0.6, "Newtonian squeeze F = 20: observed order within 0.6 of 0.53")
 end)
 
 T.case("Bingham squeeze, Bn = 100, at constant velocity against thin-film Bingham theory", function()
