@@ -486,35 +486,6 @@ void sph_pressure_correct(sph_world *w, double dt) {
     }
 }
 
-/* The density correction (see the top of this file): the pressure system's matrix, the
- * source gamma (rho0 - rho_i) / rho0, warm-started from the last phi; the particles move by
- * -grad phi / rho (the pressure's symmetric gradient) and their density follows by
- * continuity. Walls stay; free-surface particles hold phi = 0. */
-static int density_pass(sph_world *w, int pass);
-
-/* Up to density_passes corrections while the error stays above density_tol. One pass
- * removes the smooth part of the error, not all of it: the matrix is the compact Laplacian
- * and the displacement's divergence the wide SPH one, so a short-wavelength error (the
- * column-to-column pattern a squeeze leaves next to the plate/free-surface corner) is only
- * partly removed and builds up. Measured, Newtonian squeeze, Re = 1000, dx = 1/40, t = 0.4:
- * max density error 1.6 % (1 pass), 0.92 % (2); Re = 1 to h = 0.34: 0.58 % with 2 passes.
- * Each further pass removes less (a mode that the displacement's divergence barely sees),
- * but the passes run only while the error is above density_tol: Re = 0.01 to h = 0.6
- * (dt already at its floor, so the step control cannot help) peaked at 2.4 % (2 passes),
- * 1.3 % (4), 0.68 % (8); Bn = 100 under load 1.08 % (2), 0.63 % (4). The default stays 2:
- * with the error removed by passes, dt no longer shrinks, and the loaded plates' time error
- * shows (Newtonian squeeze under F = 20, dx = 1/20: closing speed 1.63 times lubrication in
- * 1329 steps with 2 passes, 1.78 times in 487 steps with 8). A Shepard
- * filter of the continuity density instead (every 20 steps) only took Re = 0.01 from 2.4 to
- * 1.9 %, and every step it let particles through the plate: the filtered density no longer
- * sees a clump.
- * So the extra passes come only where the error would break the 1 % criterion: after
- * density_passes, passes go on (up to SPH_MAX_DENSITY_PASSES) while the error is above
- * density_limit (0.8 %). Measured (dx = 1/40, one thread): Re = 0.01 2.33 -> 0.80 %
- * (9.5 -> 13.6 s), Bn = 100 load 1.09 -> 0.80 % (22 -> 33 s), the paper's Bn = 5 F* = -10
- * to t = 2 1.20 -> 0.80 % (10.5 -> 10.9 s, h(2) 0.633 unchanged); the validation
- * squeezes barely move (Newtonian V = 1 at 1/30 0.278 -> 0.268, F = 20 0.535 -> 0.524,
- * Bingham V = 1 0.073 -> 0.069, F = 400 1.12 -> 1.14). */
 /* density_diffusion: one explicit step of rho_i += kappa h^2 sum_j 2 V_ij (rho_i - rho_j) F_ij
  * between interior fluid particles (F_ij < 0: the pressure matrix's compact Laplacian;
  * V_ij = (m_i + m_j) / (rho_i + rho_j), symmetric, so between interior particles the
@@ -559,6 +530,35 @@ static void diffuse_density(sph_world *w) {
     w->st.max_density_error = maxerr;
 }
 
+/* The density correction (see the top of this file): the pressure system's matrix, the
+ * source gamma (rho0 - rho_i) / rho0, warm-started from the last phi; the particles move by
+ * -grad phi / rho (the pressure's symmetric gradient) and their density follows by
+ * continuity. Walls stay; free-surface particles hold phi = 0. */
+static int density_pass(sph_world *w, int pass);
+
+/* Up to density_passes corrections while the error stays above density_tol. One pass
+ * removes the smooth part of the error, not all of it: the matrix is the compact Laplacian
+ * and the displacement's divergence the wide SPH one, so a short-wavelength error (the
+ * column-to-column pattern a squeeze leaves next to the plate/free-surface corner) is only
+ * partly removed and builds up. Measured, Newtonian squeeze, Re = 1000, dx = 1/40, t = 0.4:
+ * max density error 1.6 % (1 pass), 0.92 % (2); Re = 1 to h = 0.34: 0.58 % with 2 passes.
+ * Each further pass removes less (a mode that the displacement's divergence barely sees),
+ * but the passes run only while the error is above density_tol: Re = 0.01 to h = 0.6
+ * (dt already at its floor, so the step control cannot help) peaked at 2.4 % (2 passes),
+ * 1.3 % (4), 0.68 % (8); Bn = 100 under load 1.08 % (2), 0.63 % (4). The default stays 2:
+ * with the error removed by passes, dt no longer shrinks, and the loaded plates' time error
+ * shows (Newtonian squeeze under F = 20, dx = 1/20: closing speed 1.63 times lubrication in
+ * 1329 steps with 2 passes, 1.78 times in 487 steps with 8). A Shepard
+ * filter of the continuity density instead (every 20 steps) only took Re = 0.01 from 2.4 to
+ * 1.9 %, and every step it let particles through the plate: the filtered density no longer
+ * sees a clump.
+ * So the extra passes come only where the error would break the 1 % criterion: after
+ * density_passes, passes go on (up to SPH_MAX_DENSITY_PASSES) while the error is above
+ * density_limit (0.8 %). Measured (dx = 1/40, one thread): Re = 0.01 2.33 -> 0.80 %
+ * (9.5 -> 13.6 s), Bn = 100 load 1.09 -> 0.80 % (22 -> 33 s), the paper's Bn = 5 F* = -10
+ * to t = 2 1.20 -> 0.80 % (10.5 -> 10.9 s, h(2) 0.633 unchanged); the validation
+ * squeezes barely move (Newtonian V = 1 at 1/30 0.278 -> 0.268, F = 20 0.535 -> 0.524,
+ * Bingham V = 1 0.073 -> 0.069, F = 400 1.12 -> 1.14). */
 int sph_density_correct(sph_world *w) {
     if (w->par.density_diffusion > 0) diffuse_density(w);
     int np = w->par.density_passes;

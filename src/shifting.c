@@ -11,8 +11,9 @@
  * 0.1 dx then sat at the contact lines and hid exposed edge particles from the free-surface
  * test; with the plain normal the stability suite's Bn = 100 load and Re = 0.01 cases miss
  * none (1 each before), Re = 1000 still one (a particle with a spray particle 1.6 dx in
- * front of it), M = 1e4 and the paper's case unchanged in outcome. The velocity is carried to the new position
- * by a first-order Taylor step, u_i += (dr_i . grad) u_i.
+ * front of it), M = 1e4 and the paper's case unchanged in outcome.
+ * The velocity is carried to the new position by a first-order Taylor step,
+ * u_i += (dr_i . grad) u_i.
  * The R term (Lind et al. 2012, R = 0.2) pushes apart pairs closer than dx. Without it a
  * lattice stretched by the squeeze's extension stays uniform in concentration (grad C = 0)
  * while its columns part: at h = 0.63 (Newtonian, Re = 1, dx = 1/40) a void opened on the

@@ -300,10 +300,9 @@ double sph_world_next_dt(sph_world *w) {
 static int cone_empty(const sph_world *w, int i) {
     double nx = 0.0, ny = 0.0;
     for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
-        int j = w->nb_j[k];
-        double vol = w->m[j] / w->rho[j];
-        nx -= vol * w->nb_gx[k];
-        ny -= vol * w->nb_gy[k];
+        int j = w->nb_j[k]; /* w->vol: V_j from this step's neighbour build */
+        nx -= w->vol[j] * w->nb_gx[k];
+        ny -= w->vol[j] * w->nb_gy[k];
     }
     double nn = hypot(nx, ny);
     if (!(nn > 0.0)) return 0;
