@@ -5,7 +5,7 @@
 -- engine stops it (the message is printed). Writes OUT/thin_film.csv (run, h, a/h, F h^6,
 -- max density error) and OUT/thin_film.png.
 --   build/sph scripts/thin_film.lua [dx=0.025] [kappa=0,0.05] [h_stop=0.15] [out=out/bench]
---                                   [threads=1]
+--                                   [threads=1] [predictor=beta]
 local sph = require "sph"
 local squeeze = require "sph.squeeze"
 local o = ... or {}
@@ -18,7 +18,8 @@ csv:write("density_diffusion,h,a_over_h,F_h6,max_density_error\n")
 local series = {}
 for _, kappa in ipairs(kappas) do
   local w, top = squeeze.build{ dx = dx, Re = 1, Bn = 0, mode = "velocity", h_min = h_stop,
-                                world = { threads = o.threads or 1, density_diffusion = kappa } }
+                                world = { threads = o.threads or 1, density_diffusion = kappa,
+                                            pressure_predictor = o.predictor } }
   local xs, ys, next_h = {}, {}, 0.5
   local ok, err = pcall(function()
     while top.position > h_stop do

@@ -251,6 +251,7 @@ void sph_viscous_explicit(sph_world *w, double dt);
 int sph_viscous_implicit(sph_world *w, double dt);
 int sph_pressure_solve(sph_world *w, double dt);
 void sph_pressure_correct(sph_world *w, double dt);
+void sph_pressure_predictor(sph_world *w, double *ax, double *ay);
 int sph_density_correct(sph_world *w);
 /* shifting.c */
 void sph_shifting_apply(sph_world *w, double dt);

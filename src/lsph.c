@@ -144,7 +144,7 @@ static int l_world(lua_State *L) {
     static const char *const keys[] = {"dx", "h", "rho", "gravity", "viscosity", "shifting",
                                        "cfl", "cvisc", "cforce", "dt_max", "periodic", "symmetry",
                                        "threads", "tol", "max_iter", "surface", "density_relax",
-                                       "density_tol", "density_passes", "density_limit", "density_diffusion", "density_solve_tol", "solver", 0};
+                                       "density_tol", "density_passes", "density_limit", "density_diffusion", "density_solve_tol", "pressure_predictor", "solver", 0};
     luaL_checktype(L, 1, LUA_TTABLE);
     sph_lua_opt_only(L, 1, "world", keys);
     sph_params p;
@@ -168,6 +168,7 @@ static int l_world(lua_State *L) {
     p.density_limit = sph_lua_opt_number(L, 1, "world", "density_limit", p.density_limit);
     p.density_diffusion = sph_lua_opt_number(L, 1, "world", "density_diffusion", p.density_diffusion);
     p.density_solve_tol = sph_lua_opt_number(L, 1, "world", "density_solve_tol", p.density_solve_tol);
+    p.pressure_predictor = sph_lua_opt_number(L, 1, "world", "pressure_predictor", p.pressure_predictor);
     if (!(p.shifting >= 0)) luaL_error(L, "bad argument to 'world' (shifting: number >= 0 expected)");
     if (!(p.dx > 0)) luaL_error(L, "bad argument to 'world' (dx: positive number expected, got %f)", p.dx);
     if (p.threads < 0) luaL_error(L, "bad argument to 'world' (threads: number >= 1 expected)");

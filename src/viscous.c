@@ -167,12 +167,18 @@ static void visc_assemble(sph_world *w, double dt, int comp) {
         sph_lap(w, SPH_PHASE_VISC_ASSEMBLY);
         return;
     }
-    double gx = w->par.gravity[0], gy = w->par.gravity[1];
+    /* the pressure predictor (pressure.c): -beta grad p^n / rho as a body force */
+    double gx = w->par.gravity[0], gy = w->par.gravity[1], beta = w->par.pressure_predictor;
+    if (beta > 0) sph_pressure_predictor(w, w->xs, w->ys);
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int r = 0; r < nrows; r++) {
         int i = w->vrow_of[r], e = A->start[r] + 1;
         double mi = w->m[i];
         double du = 1.0, dv = 1.0, ru = w->u[i] + dt * gx, rv = w->v[i] + dt * gy;
+        if (beta > 0) {
+            ru += beta * dt * w->xs[i];
+            rv += beta * dt * w->ys[i];
+        }
         int k0 = w->nb_start[i], km = w->nb_mid[i], k1 = w->nb_start[i + 1];
         double ei = w->eta[i], dr = dt / w->rho[i];
         for (int k = k0; k < km; k++) { /* fluid: c = dt V_j (eta_i + eta_j) F_ij / rho_i */
@@ -317,6 +323,15 @@ int sph_viscous_implicit(sph_world *w, double dt) {
         }
     }
     set_plate_viscous_forces(w, fplate);
+    double beta = w->par.pressure_predictor;
+    if (beta > 0) { /* the projection applies the whole -grad p^{n+1} / rho */
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+        for (int i = 0; i < n; i++) {
+            if (w->kind[i] != SPH_FLUID) continue;
+            w->us[i] -= beta * dt * w->xs[i];
+            w->vs[i] -= beta * dt * w->ys[i];
+        }
+    }
     sph_boundary_sync(w, w->us, w->vs, 1);
     return 0;
 }

@@ -30,6 +30,7 @@ void sph_params_default(sph_params *p) {
     p->density_limit = 0.008;
     p->density_diffusion = 0.0;
     p->density_solve_tol = 1e-3;
+    p->pressure_predictor = 1.0;
 }
 
 int sph_world_fail(sph_world *w, const char *fmt, ...) {
@@ -50,7 +51,8 @@ static const char *check_params(const sph_params *p) {
         "an axis cannot be both periodic and a symmetry plane", "tol must be in (0, 1)",
         "max_iter must be positive", "gravity must be finite", "density_relax must be in [0, 1]",
         "shifting must be >= 0", "density_tol must be in [0, 1)", "density_passes must be in [1, 10]",
-        "solver must be SPH_SOLVER_AMG or SPH_SOLVER_JACOBI", "density_limit must be in [0, 1) (0: none)", "density_diffusion must be in [0, 0.25]", "density_solve_tol must be in (0, 1)"};
+        "solver must be SPH_SOLVER_AMG or SPH_SOLVER_JACOBI", "density_limit must be in [0, 1) (0: none)", "density_diffusion must be in [0, 0.25]", "density_solve_tol must be in (0, 1)",
+        "pressure_predictor must be in [0, 1]"};
     if (!(p->dx > 0 && isfinite(p->dx))) return bad[0];
     if (!(p->h >= 0 && isfinite(p->h))) return bad[1];
     if (!(p->rho0 > 0 && isfinite(p->rho0))) return bad[2];
@@ -70,6 +72,7 @@ static const char *check_params(const sph_params *p) {
     if (!(p->density_limit >= 0 && p->density_limit < 1)) return bad[14];
     if (!(p->density_diffusion >= 0 && p->density_diffusion <= 0.25)) return bad[15];
     if (!(p->density_solve_tol > 0 && p->density_solve_tol < 1)) return bad[16];
+    if (!(p->pressure_predictor >= 0 && p->pressure_predictor <= 1)) return bad[17];
     return 0;
 }
 

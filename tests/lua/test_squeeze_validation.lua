@@ -69,9 +69,14 @@ T.case("Newtonian squeeze at constant velocity against lubrication", function()
   -- about 0.16; V = 0.1 at Re = 1 gives the same run as V = 1 at Re = 0.1, to the digit.)
   -- Tolerances: the squeeze is chaotic at the percent level (a change of round-off moves
   -- mean forces by up to 3 %, test_squeeze.lua): 0.03 on each error, 0.5 on the order.
-  T.close(rs[1].error, 0.2861, 0.03, "Newtonian squeeze V = 1, dx = 1/20: error within 0.03 of 0.286")
-  T.close(rs[2].error, 0.2641, 0.03, "Newtonian squeeze V = 1, dx = 1/30: error within 0.03 of 0.264")
-  T.close(order, 0.20, 0.5, "Newtonian squeeze V = 1: observed order within 0.5 of 0.20")
+  -- Session 7, the pressure predictor (pressure_predictor = 1: the viscous step carries
+  -- -grad p^n, kernel-averaged): errors 0.2306 / 0.2186 (order 0.13) with -O2, 0.2304 /
+  -- 0.2162 (0.16) under make check's -O1 sanitizer build; the references below are their
+  -- middle. The predictor removes much of the force's time-step error: 0.231 in 1727
+  -- steps, 0.218 at dt_max = 1e-4 (6723 steps), where without it 0.286 in 1741 and 0.243.
+  T.close(rs[1].error, 0.230, 0.03, "Newtonian squeeze V = 1, dx = 1/20: error within 0.03 of 0.230")
+  T.close(rs[2].error, 0.217, 0.03, "Newtonian squeeze V = 1, dx = 1/30: error within 0.03 of 0.217")
+  T.close(order, 0.15, 0.5, "Newtonian squeeze V = 1: observed order within 0.5 of 0.15")
   T.below(rs[2].peak_density_error, 0.03, "Newtonian squeeze V = 1, dx = 1/30: peak density error under 3 %")
 end)
 
@@ -87,9 +92,12 @@ T.case("Newtonian squeeze under a constant load against lubrication", function()
   -- Session 6 (density_limit, density_solve_tol, shifting's plain surface normal, the
   -- 1.5 dx free-surface cone): errors 0.5934 / 0.4813 (order 0.52) with -O2, 0.5916 /
   -- 0.4736 (0.55) under make check's -O1 sanitizer build: the references below are those.
-  T.close(rs[1].error, 0.593, 0.06, "Newtonian squeeze F = 20, dx = 1/20: error within 0.06 of 0.593")
-  T.close(rs[2].error, 0.478, 0.06, "Newtonian squeeze F = 20, dx = 1/30: error within 0.06 of 0.478")
-  T.close(order, 0.53, 0.6, "Newtonian squeeze F = 20: observed order within 0.6 of 0.53")
+  -- Session 7, the pressure predictor: errors 0.4790 / 0.3882 (order 0.52) with -O2,
+  -- 0.4790 / 0.3881 (0.52) with -O1: the plate now closes 1.39-1.48 times faster than
+  -- lubrication says (1.48-1.59 before).
+  T.close(rs[1].error, 0.479, 0.06, "Newtonian squeeze F = 20, dx = 1/20: error within 0.06 of 0.479")
+  T.close(rs[2].error, 0.388, 0.06, "Newtonian squeeze F = 20, dx = 1/30: error within 0.06 of 0.388")
+  T.close(order, 0.52, 0.6, "Newtonian squeeze F = 20: observed order within 0.6 of 0.52")
 end)
 
 T.case("Bingham squeeze, Bn = 100, at constant velocity against thin-film Bingham theory", function()
@@ -102,8 +110,14 @@ T.case("Bingham squeeze, Bn = 100, at constant velocity against thin-film Bingha
   -- regularisation does not matter) but stops at 1/30 (the force explodes near h = 0.42:
   -- time step below its minimum), and M = 100 stops the same way at 1/25 (h = 0.37).
   -- Tolerance 0.02 on the error.
-  T.close(rs[1].error, 0.0731, 0.02, "Bingham squeeze V = 1, dx = 1/20: error within 0.02 of 0.073")
-  T.close(rs[1].mean_ratio, 1.073, 0.03, "Bingham squeeze V = 1, dx = 1/20: mean force within 0.03 of 1.073 x thin-film theory")
+  -- Session 7: that 1.07 was a time-step error. Without the pressure predictor the mean
+  -- force ratio was 1.079 / 1.146 / 1.176 at the adaptive dt / dt_max = 1e-4 / 3e-5; with
+  -- it (pressure_predictor = 1, the default) 1.156 / 1.178 (and 1.180 / 1.191 / 1.190
+  -- with p^n not kernel-averaged): what is left (1.16-1.19 x thin-film theory at a / h
+  -- 2.5-4.1) is the resolution and the theory's own neglect of the edge. Measured: error
+  -- 0.1505, ratio 1.1558 (-O2); 0.1512, 1.1567 (-O1 sanitizer build).
+  T.close(rs[1].error, 0.151, 0.02, "Bingham squeeze V = 1, dx = 1/20: error within 0.02 of 0.151")
+  T.close(rs[1].mean_ratio, 1.156, 0.03, "Bingham squeeze V = 1, dx = 1/20: mean force within 0.03 of 1.156 x thin-film theory")
 end)
 
 T.case("Bingham squeeze, Bn = 100, under a constant load: the stop height", function()
@@ -120,8 +134,14 @@ T.case("Bingham squeeze, Bn = 100, under a constant load: the stop height", func
   -- sample carries far less than its yield stress says (the constant-velocity case at
   -- V = 0.1 falls to 0.2 x the thin-film load at h = 0.46, against 1.07 at V = 1). A wrong
   -- result, kept here so that a fix shows: tolerance 0.15 on the error, 0.02 on h(0.7).
-  T.close(r.error, 1.117, 0.15, "Bingham squeeze F = 400, dx = 1/20: error within 0.15 of 1.12")
-  T.close(r.h, 0.399, 0.02, "Bingham squeeze F = 400, dx = 1/20: h(0.7) within 0.02 of 0.399 (ideal stop 0.5)")
+  -- Session 7, the fix: most of it was the projection's splitting error (the no-slip
+  -- walls did not see the pressure gradient within a step, so the slow film slipped);
+  -- with the pressure predictor (the default) h(0.7) = 0.445 (ideal stop 0.5) and the
+  -- error 0.495 (1.495 x F needed by thin-film theory at the run's h and V); 0.4416 and
+  -- 0.532 under make check's -O1 build (0.456 and 0.375 with p^n not kernel-averaged,
+  -- which the stability suite's stiff cases do not survive: pressure.c).
+  T.close(r.error, 0.513, 0.15, "Bingham squeeze F = 400, dx = 1/20: error within 0.15 of 0.513")
+  T.close(r.h, 0.443, 0.02, "Bingham squeeze F = 400, dx = 1/20: h(0.7) within 0.02 of 0.443 (ideal stop 0.5)")
 end)
 
 T.done()
