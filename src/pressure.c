@@ -102,7 +102,16 @@
  * shape, amplitude 5 x the mean pressure, alternating from step to step at the adaptive
  * dt and growing ~1 % a step at a fixed dt = 5e-5 (h = 0.297, same place), with the
  * density error at 0.1-0.5 % and a velocity noise of rms 0.1-0.16 (V = 1) all over the
- * film. Open. */
+ * film. Open.
+ * Why the density error stays above 1 % below h ~ 0.19 with density_diffusion (dx = 1/40,
+ * session 7): the error there is no longer a checkerboard but a smooth +1-2 % over the
+ * outer half of the film (x = 1-2.25; the kernel sum says 0.97-0.99 there), and every
+ * correction pass gets step length 0: the displacement that undoes a smooth 1 % over a
+ * film of length ~1 is 0.3-0.4 dx, and the continuity rate of so large a displacement
+ * among 7 disordered rows is row-to-row noise ten times the error (row means of the
+ * density change -0.05 .. +0.15 against errors of 0.005-0.01), not the smooth change the
+ * matrix asked for. Letting the walls take the fluid particle's own tangential
+ * displacement in that rate changed nothing (the noise is between fluid rows). */
 #include "internal.h"
 #include "kernel.h"
 
