@@ -487,10 +487,14 @@ void sph_pressure_predictor(sph_world *w, double *ax, double *ay) {
             continue;
         }
         double xi = w->x[i], yi = w->y[i], s = w->vol[i] * w0, sp = s * p[i];
-        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
-            int j = w->nb_j[k];
-            double dx = xi - w->x[j], dy = yi - w->y[j];
-            double c = w->vol[j] * sph_kernel_value(sqrt(dx * dx + dy * dy), h);
+        const int *nj = w->nb_j;
+        const double *x = w->x, *y = w->y, *vol = w->vol;
+        int k0 = w->nb_start[i], k1 = w->nb_start[i + 1];
+#pragma omp simd reduction(+ : s, sp)
+        for (int k = k0; k < k1; k++) {
+            int j = nj[k];
+            double dx = xi - x[j], dy = yi - y[j];
+            double c = vol[j] * sph_kernel_value(sqrt(dx * dx + dy * dy), h);
             s += c;
             sp += c * p[j];
         }
@@ -501,10 +505,14 @@ void sph_pressure_predictor(sph_world *w, double *ax, double *ay) {
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) continue;
         double gx = 0.0, gy = 0.0, pi = pt[i];
-        for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
-            double c = w->vol[w->nb_j[k]] * (pt[w->nb_j[k]] - pi);
-            gx += c * w->nb_gx[k];
-            gy += c * w->nb_gy[k];
+        const int *nj = w->nb_j;
+        const double *vol = w->vol, *ngx = w->nb_gx, *ngy = w->nb_gy;
+        int k0 = w->nb_start[i], k1 = w->nb_start[i + 1];
+#pragma omp simd reduction(+ : gx, gy)
+        for (int k = k0; k < k1; k++) {
+            double c = vol[nj[k]] * (pt[nj[k]] - pi);
+            gx += c * ngx[k];
+            gy += c * ngy[k];
         }
         double ir = 1.0 / w->rho[i];
         ax[i] = -ir * (w->lxx[i] * gx + w->lxy[i] * gy);
