@@ -111,7 +111,15 @@
  * among 7 disordered rows is row-to-row noise ten times the error (row means of the
  * density change -0.05 .. +0.15 against errors of 0.005-0.01), not the smooth change the
  * matrix asked for. Letting the walls take the fluid particle's own tangential
- * displacement in that rate changed nothing (the noise is between fluid rows). */
+ * displacement in that rate changed nothing (the noise is between fluid rows).
+ * Tried (session 7, not kept for want of time to test it on the loaded cases): repeating
+ * the projection on u^{n+1}'s residual divergence (same matrix, the extra pressure added
+ * to p and to the plate force) before the continuity update. 2 extra passes: the film
+ * without density_diffusion reaches h = 0.19 (0.233 without them); with 0.05 it reaches
+ * 0.15 with the max density error under 1 % down to h = 0.16 (peak 1.36 %), F h^6
+ * 0.70-0.79 at a/h 10-22; 3 passes peak 1.65 %; 2 passes with 0.1 blew up at h = 0.234
+ * (few, long steps). Newtonian V = 1 (dx = 1/20): error 0.231 / 0.207 / 0.225 with 0 /
+ * 1 / 2 passes. Each pass is one more solve a step. */
 #include "internal.h"
 #include "kernel.h"
 
