@@ -406,6 +406,24 @@ static void cholesky_solve(const double *c, int n, const double *b, double *x) {
  * tests). Tried and dropped: four partial sums
  * in the row products (to break the chain of dependent additions): no change in the
  * product's 0.5 ns a nonzero (the rows overlap in the processor already). */
+/* Measured and not kept (session 7): a Chebyshev smoother on the finest level in place of
+ * Gauss-Seidel (the polynomial in D^-1 A of Saad's Algorithm 12.1 on [beta / ratio, beta],
+ * beta the Gershgorin bound of the copy's D^-1 A; from x = 0 before the coarse correction and
+ * the same polynomial on the residual after it, so the cycle stays symmetric; its sweeps are
+ * products on this copy, fused with the vector updates; degree k costs 2k products a cycle
+ * against Gauss-Seidel's two sweeps). The premise was a Gauss-Seidel sweep bound by its
+ * recurrence at ~2 ns a nonzero; measured on the unit test's SPH-like stencil (102,400 rows,
+ * 2.54e6 nonzeros, 1 thread, medians of 15) it is not: the forward sweep on L with the
+ * residual -U x 1.34 ms (0.53 ns a nonzero), the backward sweep 1.12 ms (0.44 ns), a product
+ * on this copy 0.55 ns and CG's double CSR product 0.55 ns a nonzero. Each solve of the
+ * squeeze at 10^5 particles (Bn = 5, M = 800, Re = 1, V = -1, dx = 1/450, steps 4-11) run
+ * with both smoothers in one process, order alternating: CG iterations per pressure-type
+ * solve and per viscous pair, Gauss-Seidel -> Chebyshev, and the Chebyshev solve's time over
+ * Gauss-Seidel's: degree 2, ratio 4: 5.3 -> 5.3 and 14.6 -> 14.0, x1.51 and x1.52; degree 2,
+ * ratio 2.5: 5.3 -> 5.2, 14.6 -> 14.4, x1.52, x1.65; degree 3, ratio 4: 5.3 -> 4.8,
+ * 14.6 -> 12.7, x1.82, x1.94; degree 1 (damped Jacobi, omega 0.8): 5.3 -> 6.1, 15.1 -> 17.9,
+ * x1.13, x1.19; omega 2/3: 6.5, 19.1, x1.19, x1.29. With the same iterations the polynomial
+ * costs twice the sweeps: no gain at any degree. (beta is 2 on the stencil: a zero row sum.) */
 static inline float to_float0(double v) {
     float f = (float)v;
     uint32_t u; /* rounded away from zero: one unit in the last place back (branch-free) */
@@ -610,6 +628,26 @@ static void split_residual(const sph_amg_split *S, int n, const double *b, const
  * the level's own), the structure read once for both. Per system, the arithmetic is that
  * of the one-system sweeps above, in the same order. */
 #define FINE_SWEEPS2(SUF, IT, COL)                                                                         \
+    /* s1 -= sum v1[k] x1[col k], s2 likewise, over the entries [k0, k1) of row i, in order */             \
+    static inline void row2_##SUF(const IT *fc, int i, int k0, int k1, const float *v1, const float *v2,   \
+                                  const double *x1, const double *x2, double *s1, double *s2) {             \
+        double a1 = *s1, a2 = *s2;                                                                         \
+        (void)i; /* COL32 does not need it */                                                              \
+        for (int k = k0; k < k1; k++) {                                                                    \
+            int j = COL(k);                                                                                \
+            a1 -= v1[k] * x1[j];                                                                           \
+            a2 -= v2[k] * x2[j];                                                                           \
+        }                                                                                                  \
+        *s1 = a1;                                                                                          \
+        *s2 = a2;                                                                                          \
+    }                                                                                                      \
+    /* the same over the row's L, then its U */                                                            \
+    static inline void row2_lu_##SUF(const sph_amg_split *S, const IT *fc, int i, const float *v1,         \
+                                     const float *v2, const double *x1, const double *x2, double *s1,      \
+                                     double *s2) {                                                         \
+        row2_##SUF(fc, i, S->fs[i], S->fm[i], v1, v2, x1, x2, s1, s2);                                     \
+        row2_##SUF(fc, i, S->fu[i], S->fs[i + 1], v1, v2, x1, x2, s1, s2);                                 \
+    }                                                                                                      \
     static void fine_forward2_##SUF(const sph_amg_split *S, int n, const float *v1, const float *v2,       \
                                     const double *d1, const double *d2, const double *b1, const double *b2, \
                                     double *x1, double *x2, double *r1, double *r2, const IT *fc, int threads) { \
@@ -620,22 +658,14 @@ static void split_residual(const sph_amg_split *S, int n, const double *b, const
                 int lo = (int)((long)n * t / nb), hi = (int)((long)n * (t + 1) / nb);                      \
                 for (int i = lo; i < hi; i++) {                                                            \
                     double s1 = b1[i], s2 = b2[i];                                                         \
-                    for (int k = fs[i]; k < fm[i]; k++) {                                                  \
-                        int j = COL(k);                                                                    \
-                        s1 -= v1[k] * x1[j];                                                               \
-                        s2 -= v2[k] * x2[j];                                                               \
-                    }                                                                                      \
+                    row2_##SUF(fc, i, fs[i], fm[i], v1, v2, x1, x2, &s1, &s2);                             \
                     x1[i] = s1 * d1[i];                                                                    \
                     x2[i] = s2 * d2[i];                                                                    \
                 }                                                                                          \
             }                                                                                              \
             _Pragma("omp for schedule(static)") for (int i = 0; i < n; i++) {                              \
                 double s1 = 0.0, s2 = 0.0;                                                                 \
-                for (int k = fu[i]; k < fs[i + 1]; k++) {                                                  \
-                    int j = COL(k);                                                                        \
-                    s1 -= v1[k] * x1[j];                                                                   \
-                    s2 -= v2[k] * x2[j];                                                                   \
-                }                                                                                          \
+                row2_##SUF(fc, i, fu[i], fs[i + 1], v1, v2, x1, x2, &s1, &s2);                             \
                 r1[i] = s1;                                                                                \
                 r2[i] = s2;                                                                                \
             }                                                                                              \
@@ -649,16 +679,7 @@ static void split_residual(const sph_amg_split *S, int n, const double *b, const
         if (nb <= 1) {                                                                                     \
             for (int i = n - 1; i >= 0; i--) {                                                             \
                 double s1 = b1[i], s2 = b2[i];                                                             \
-                for (int k = fs[i]; k < fm[i]; k++) {                                                      \
-                    int j = COL(k);                                                                        \
-                    s1 -= v1[k] * x1[j];                                                                   \
-                    s2 -= v2[k] * x2[j];                                                                   \
-                }                                                                                          \
-                for (int k = fu[i]; k < fs[i + 1]; k++) {                                                  \
-                    int j = COL(k);                                                                        \
-                    s1 -= v1[k] * x1[j];                                                                   \
-                    s2 -= v2[k] * x2[j];                                                                   \
-                }                                                                                          \
+                row2_lu_##SUF(S, fc, i, v1, v2, x1, x2, &s1, &s2);                                         \
                 x1[i] = s1 * d1[i];                                                                        \
                 x2[i] = s2 * d2[i];                                                                        \
             }                                                                                              \
@@ -670,11 +691,7 @@ static void split_residual(const sph_amg_split *S, int n, const double *b, const
             int lo = (int)((long)n * t / nb), hi = (int)((long)n * (t + 1) / nb);                          \
             for (int i = hi - 1; i >= lo; i--) {                                                           \
                 double s1 = b1[i], s2 = b2[i];                                                             \
-                for (int k = fs[i]; k < fm[i]; k++) { /* same block */                                     \
-                    int j = COL(k);                                                                        \
-                    s1 -= v1[k] * x1[j];                                                                   \
-                    s2 -= v2[k] * x2[j];                                                                   \
-                }                                                                                          \
+                row2_##SUF(fc, i, fs[i], fm[i], v1, v2, x1, x2, &s1, &s2); /* same block */                \
                 for (int k = fu[i]; k < fs[i + 1]; k++) {                                                  \
                     int j = COL(k), in = j >= lo && j < hi;                                                \
                     s1 -= v1[k] * (in ? x1[j] : t1[j]);                                                    \
@@ -689,20 +706,10 @@ static void split_residual(const sph_amg_split *S, int n, const double *b, const
                                       const double *d1, const double *d2, const double *b1, const double *b2, \
                                       const double *x1, const double *x2, double *r1, double *r2, const IT *fc, \
                                       int threads) {                                                     \
-        const int *fs = S->fs, *fm = S->fm, *fu = S->fu;                                                   \
         _Pragma("omp parallel for schedule(static) num_threads(n < AMG_PAR_MIN ? 1 : threads)")           \
         for (int i = 0; i < n; i++) {                                                                      \
             double s1 = b1[i] - x1[i] / d1[i], s2 = b2[i] - x2[i] / d2[i];                                 \
-            for (int k = fs[i]; k < fm[i]; k++) {                                                          \
-                int j = COL(k);                                                                            \
-                s1 -= v1[k] * x1[j];                                                                       \
-                s2 -= v2[k] * x2[j];                                                                       \
-            }                                                                                              \
-            for (int k = fu[i]; k < fs[i + 1]; k++) {                                                      \
-                int j = COL(k);                                                                            \
-                s1 -= v1[k] * x1[j];                                                                       \
-                s2 -= v2[k] * x2[j];                                                                       \
-            }                                                                                              \
+            row2_lu_##SUF(S, fc, i, v1, v2, x1, x2, &s1, &s2);                                             \
             r1[i] = s1;                                                                                    \
             r2[i] = s2;                                                                                    \
         }                                                                                                  \
