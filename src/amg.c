@@ -286,7 +286,13 @@ static int aggregate(sph_amg *g, const sph_csr *a, int n) {
     return nc;
 }
 
-/* P = (I - omega D_F^-1 A_F) T for the aggregates in g->agg (nc columns). */
+/* P = (I - omega D_F^-1 A_F) T for the aggregates in g->agg (nc columns). Measured and not
+ * kept (session 7): the unsmoothed P = T for the viscous system (its diagonal dominates; one
+ * entry a row makes A P and R A P cheap): squeeze at 10^5 particles (Bn = 5, M = 800, Re = 1,
+ * V = -1, dx = 1/450, steps 4-11, two interleaved pairs on the shared machine) viscous setup
+ * 66.6 / 55.4 -> 39.5 / 39.1 ms a step, but 5.5 -> 8.8 CG iterations per component and the
+ * pair's solves 76.2 / 70.2 -> 96.4 / 98.7 ms: setup plus solves 142.8 / 125.6 -> 135.9 /
+ * 137.8 ms, no gain. */
 static int prolongation(sph_amg *g, const sph_csr *a, sph_csr *P, int nc) {
     int n = a->n, *agg = g->agg, *ss = g->sstart, *sj = g->sj;
     /* each row: its own aggregate plus its strong neighbours' (at most 1 + strong count) */
