@@ -115,7 +115,11 @@ static int transpose(const sph_csr *a, int m, sph_csr *t, int *cur) {
  * rows, 1 thread, best of 5 interleaved medians on the shared machine): the inner loop
  * without the branch on a new column (select and unconditional stores) and a bound per row
  * from b's longest row instead of the pass over a's row, 48.2 -> 49.0 ms (no gain: the
- * compiler kept a branch, and the loop is ~2.5 ns per product term either way); b's rows of
+ * compiler kept a branch, and the loop is ~2.5 ns per product term either way; session 7,
+ * branch-free for certain, the column stored always and kept by a conditional increment,
+ * the restart of a new column's sum by an integer mask: A P on the unit test's SPH-like
+ * stencil at 102,400 rows 13.3 -> 24.2 ms, the dependent stores and reloads cost more than
+ * the mispredictions); b's rows of
  * up to 4 entries padded to 4 (no branch on the row length), 49.4 -> 61.5 ms. Setup at
  * that size, per part: A P 36 %, the smoothers' copies 19 %, the merged copy of the fine
  * matrix and vectors 13 %, P and R 12 %, R (A P) 10 %, strength 5 %, aggregation 4 %. */
