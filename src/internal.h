@@ -282,6 +282,10 @@ int sph_solver_setup_reuse(sph_solver *s, const sph_csr *a, sph_linear_solver ki
  * cycle smooths with the old ones: still a valid preconditioner, a weaker one). 0, or -1
  * when out of memory (the solves then fall back to Jacobi). */
 int sph_solver_refresh(sph_solver *s, const sph_csr *a, int threads);
+/* Apply the hierarchy set up for a (the last setup) as a V-cycle: every level visits the
+ * next once (the default is a W-cycle below the finest level; a setup restores it). For
+ * the viscous systems (solver.c, sph_solver_vcycle). */
+void sph_solver_vcycle(sph_solver *s, const sph_csr *a);
 /* A second system a2 of the same structure as a (same start and col arrays, other values)
  * for sph_solver_pcg2: the hierarchy set up for a serves both, the finest level's smoother
  * takes a2's values for a2's system (a's keep theirs). 0, or -1 when out of memory (then

@@ -259,6 +259,7 @@ int sph_viscous_implicit(sph_world *w, double dt) {
         if (sph_solver_setup(&w->solver, A, w->par.solver, w->threads))
             return sph_world_fail(w, "viscous solver: multigrid setup failed at step %ld (t = %g, %d unknowns): "
                                   "out of memory or a coarse operator not positive definite", w->steps, w->t, nrows);
+        sph_solver_vcycle(&w->solver, A); /* a V-cycle for these systems (solver.c) */
         if (sph_solver_second(&w->solver, A, &V2, w->threads))
             return sph_world_fail(w, "viscous solver: out of memory at step %ld (%d unknowns)", w->steps, nrows);
         sph_solve_result res[2];
