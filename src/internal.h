@@ -50,7 +50,8 @@ typedef struct sph_solve_result {
 #define SPH_AMG_MAX_THREADS 64 /* threads of the setup's sparse products (more run as this many) */
 /* A level's smoother copy (amg.c, "The smoother's copy"): the operator's off-diagonals
  * split per row into L (earlier rows of the same thread block) in [fs[i], fm[i]) and the
- * rest, U, in [fu[i], fs[i + 1]); values in float (rounded toward zero), columns as 16-bit
+ * rest, U, in [fu[i], fs[i + 1]) (between them the diagonal's slots, zeros at column i, so
+ * [fs[i], fs[i + 1]) is the whole row); values in float (rounded toward zero), columns as 16-bit
  * offsets from the row when they fit, the inverse diagonal in double. */
 typedef struct sph_amg_split {
     int n;              /* rows it holds (0: none) */
