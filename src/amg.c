@@ -1008,23 +1008,27 @@ static void vcycle(sph_amg *g, int l, const sph_csr *a, const double *b, double 
     for (int s = 0; s < sweeps; s++) gs_sweep(a, b, x, L->t, 1, threads);
 }
 
+/* row i of a times x1 and x2: s1, s2 (sums from 0 in the row's order) */
+static inline void csr_row2(const int *st, const int *col, const double *val, int i, const double *x1,
+                            const double *x2, double *s1, double *s2) {
+    double a1 = 0.0, a2 = 0.0;
+    for (int k = st[i]; k < st[i + 1]; k++) {
+        int j = col[k];
+        double v = val[k];
+        a1 += v * x1[j];
+        a2 += v * x2[j];
+    }
+    *s1 = a1;
+    *s2 = a2;
+}
+
 /* y1 = a x1, y2 = a x2 (one matrix, two vectors: R and P) */
 static void matvec2(const sph_csr *a, const double *x1, const double *x2, double *y1, double *y2, int threads) {
     int n = a->n;
     const int *st = a->start, *col = a->col;
     const double *val = a->val;
 #pragma omp parallel for schedule(static) num_threads(n < AMG_PAR_MIN ? 1 : threads)
-    for (int i = 0; i < n; i++) {
-        double s1 = 0.0, s2 = 0.0;
-        for (int k = st[i]; k < st[i + 1]; k++) {
-            int j = col[k];
-            double v = val[k];
-            s1 += v * x1[j];
-            s2 += v * x2[j];
-        }
-        y1[i] = s1;
-        y2[i] = s2;
-    }
+    for (int i = 0; i < n; i++) csr_row2(st, col, val, i, x1, x2, &y1[i], &y2[i]);
 }
 
 /* x1 += P e1, x2 += P e2 (prolong_add for two vectors, the sums of matvec2) */
@@ -1034,13 +1038,8 @@ static void prolong_add2(const sph_csr *p, const double *e1, const double *e2, d
     const double *val = p->val;
 #pragma omp parallel for schedule(static) num_threads(n < AMG_PAR_MIN ? 1 : threads)
     for (int i = 0; i < n; i++) {
-        double s1 = 0.0, s2 = 0.0;
-        for (int k = st[i]; k < st[i + 1]; k++) {
-            int j = col[k];
-            double v = val[k];
-            s1 += v * e1[j];
-            s2 += v * e2[j];
-        }
+        double s1, s2;
+        csr_row2(st, col, val, i, e1, e2, &s1, &s2);
         x1[i] += s1;
         x2[i] += s2;
     }
