@@ -50,7 +50,8 @@ typedef struct sph_solve_result {
 #define SPH_AMG_MAX_THREADS 64 /* threads of the setup's sparse products (more run as this many) */
 /* A level's smoother copy (amg.c, "The smoother's copy"): the operator's off-diagonals
  * split per row into L (earlier rows of the same thread block) in [fs[i], fm[i]) and the
- * rest, U, in [fu[i], fs[i + 1]); values in float (rounded toward zero), columns as 16-bit
+ * rest, U, in [fu[i], fs[i + 1]) (between them the diagonal's slots, zeros at column i, so
+ * [fs[i], fs[i + 1]) is the whole row); values in float (rounded toward zero), columns as 16-bit
  * offsets from the row when they fit, the inverse diagonal in double. */
 typedef struct sph_amg_split {
     int n;              /* rows it holds (0: none) */
@@ -283,11 +284,18 @@ int sph_solver_setup_reuse(sph_solver *s, const sph_csr *a, sph_linear_solver ki
  * cycle smooths with the old ones: still a valid preconditioner, a weaker one). 0, or -1
  * when out of memory (the solves then fall back to Jacobi). */
 int sph_solver_refresh(sph_solver *s, const sph_csr *a, int threads);
+/* Apply the hierarchy set up for a (the last setup) as a V-cycle: every level visits the
+ * next once (the default is a W-cycle below the finest level; a setup restores it). For
+ * the viscous systems (solver.c, sph_solver_vcycle). */
+void sph_solver_vcycle(sph_solver *s, const sph_csr *a);
 /* A second system a2 of the same structure as a (same start and col arrays, other values)
  * for sph_solver_pcg2: the hierarchy set up for a serves both, the finest level's smoother
  * takes a2's values for a2's system (a's keep theirs). 0, or -1 when out of memory (then
  * a2's system is smoothed with a's values: still a valid preconditioner). */
 int sph_solver_second(sph_solver *s, const sph_csr *a, const sph_csr *a2, int threads);
+/* sph_solver_setup for a followed by sph_solver_second for a2 (AMG), the finest smoother's
+ * copies of both made in one pass; the same hierarchy and figures bit for bit. */
+int sph_solver_setup_pair(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_solver kind, int threads);
 /* Two independent systems a1 x1 = b1, a2 x2 = b2 of the same structure (a2 registered by
  * sph_solver_second after the setup for a1), solved side by side: each iteration reads
  * the structure once for both (CG's product and the multigrid cycle). Each system's
@@ -309,6 +317,8 @@ void sph_amg_apply(sph_amg *g, const sph_csr *a, const double *r, double *z, int
 /* The second system's values at the finest level's smoother (a2: the structure of the
  * matrix of the setup, other values); -1 out of memory. */
 int sph_amg_second(sph_amg *g, const sph_csr *a2, int threads);
+/* sph_amg_setup for a, then sph_amg_second for a2, in one pass over the finest copy. */
+int sph_amg_setup_pair(sph_amg *g, const sph_csr *a, const sph_csr *a2, int threads);
 /* The cycle on two right-hand sides at once: z1 for a1 (the setup's values), z2 for a2
  * (sph_amg_second's), each as sph_amg_apply would give it. */
 void sph_amg_apply2(sph_amg *g, const sph_csr *a1, const sph_csr *a2, const double *r1, const double *r2,

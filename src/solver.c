@@ -124,13 +124,14 @@ static sph_amg *slot_for(sph_solver *s, const sph_csr *a) {
 #define REUSE_SLACK 1
 #define REUSE_MAX_CHANGE 0.05
 
-static int setup(sph_solver *s, const sph_csr *a, sph_linear_solver kind, int threads, const int *row_of,
-                 const int *id) {
+static int setup(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_solver kind, int threads,
+                 const int *row_of, const int *id) {
     s->amg_for = 0;
     s->cur = 0;
     if (kind != SPH_SOLVER_AMG || a->n == 0) return 0;
     double t0 = omp_get_wtime();
     sph_amg *g = slot_for(s, a);
+    g->wcycle_from = 0; /* the default cycle (sph_solver_vcycle changes it until the next setup) */
     /* one set of setup scratch for both hierarchies: this one takes it */
     sph_amg_swap_scratch(g, g == &s->amg ? &s->amg2 : &s->amg);
     int rc = 1;
@@ -144,7 +145,7 @@ static int setup(sph_solver *s, const sph_csr *a, sph_linear_solver kind, int th
     }
     if (rc) {
         g->built_for = 0;
-        rc = sph_amg_setup(g, a, threads);
+        rc = a2 ? sph_amg_setup_pair(g, a, a2, threads) : sph_amg_setup(g, a, threads);
         if (!rc && row_of) rc = sph_amg_set_ids(g, a->n, row_of, id);
         if (!rc && !row_of) {
             free(g->rid);
@@ -164,12 +165,31 @@ static int setup(sph_solver *s, const sph_csr *a, sph_linear_solver kind, int th
 }
 
 int sph_solver_setup(sph_solver *s, const sph_csr *a, sph_linear_solver kind, int threads) {
-    return setup(s, a, kind, threads, 0, 0);
+    return setup(s, a, 0, kind, threads, 0, 0);
 }
 
 int sph_solver_setup_reuse(sph_solver *s, const sph_csr *a, sph_linear_solver kind, int threads,
                            const int *row_of, const int *id) {
-    return setup(s, a, kind, threads, row_of, id);
+    return setup(s, a, 0, kind, threads, row_of, id);
+}
+
+/* The viscous u and v systems: the second copy of the finest matrix was a pass of its own
+ * (sph_solver_second, ~10 % of the viscous setup at 10^5 particles; amg.c,
+ * sph_amg_setup_pair: 13.0 -> 8.3 ms for both copies at 10^5 rows). */
+int sph_solver_setup_pair(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_solver kind, int threads) {
+    return setup(s, a, a2, kind, threads, 0, 0);
+}
+
+/* The viscous systems take a V-cycle. Their diagonal (rho / dt, scaled by mass) dominates,
+ * and the W-cycle's second visits of the coarse levels buy nothing there: measured at 10^5
+ * particles (squeeze Bn = 5, M = 800, Re = 1, V = -1, dx = 1/450, steps 1-11, each viscous
+ * pair solved with both cycles in one process, order alternating, medians not needed: the
+ * sums over 11 pairs), CG iterations per pair 14.64 (W) -> 14.73 (V), the pair's solve time
+ * x0.925 / x0.933 (two runs; W from level 2 x0.917, from level 3 x0.917, the same 14.73).
+ * The pressure systems keep the W-cycle: there the V-cycle took 5.20 -> 6.73 iterations a
+ * solve, x1.14 the time (W from level 2: 6.17, x1.07). */
+void sph_solver_vcycle(sph_solver *s, const sph_csr *a) {
+    if (s->amg_for == a && s->cur) s->cur->wcycle_from = SPH_AMG_MAX_LEVELS;
 }
 
 int sph_solver_refresh(sph_solver *s, const sph_csr *a, int threads) {

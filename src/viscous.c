@@ -262,11 +262,10 @@ int sph_viscous_implicit(sph_world *w, double dt) {
         V2.diag = w->vdiag;
         double *x2 = w->solver.x2;
         for (int r = 0; r < nrows; r++) x2[r] = w->v[w->vrow_of[r]];
-        if (sph_solver_setup(&w->solver, A, w->par.solver, w->threads))
+        if (sph_solver_setup_pair(&w->solver, A, &V2, w->par.solver, w->threads))
             return sph_world_fail(w, "viscous solver: multigrid setup failed at step %ld (t = %g, %d unknowns): "
                                   "out of memory or a coarse operator not positive definite", w->steps, w->t, nrows);
-        if (sph_solver_second(&w->solver, A, &V2, w->threads))
-            return sph_world_fail(w, "viscous solver: out of memory at step %ld (%d unknowns)", w->steps, nrows);
+        sph_solver_vcycle(&w->solver, A); /* a V-cycle for these systems (solver.c) */
         sph_solve_result res[2];
         sph_solver_pcg2(&w->solver, A, &V2, w->vb, w->vrhs, w->vsol, x2, w->par.tol, w->par.max_iter, w->threads,
                         res);
