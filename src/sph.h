@@ -74,10 +74,11 @@ typedef struct sph_params {
     double density_solve_tol; /* relative tolerance of the density-correction solves;
                               default 1e-3 (the density follows the displacement made,
                               so phi need not be exact)                               */
-    double pressure_predictor; /* beta: the implicit viscous step carries -beta grad p^n
-                              (the last step's pressure) and the projection takes it back,
-                              so the no-slip walls see the pressure-driven shear inside the
-                              step (pressure.c); default 0                             */
+    double pressure_predictor; /* beta in [0, 1]: the implicit viscous step carries
+                              -beta grad p~ (the last step's pressure, kernel-averaged)
+                              and the projection takes it back, so the no-slip walls see
+                              the pressure-driven shear inside the step (pressure.c);
+                              default 1; ignored with explicit viscosity             */
 } sph_params;
 
 #define SPH_MAX_DENSITY_PASSES 10
