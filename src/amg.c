@@ -47,11 +47,9 @@
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
-#include <stdint.h>
 #include <string.h>
 
 #define AMG_OMEGA (2.0 / 3.0)
-#define AMG_PAR_MIN 4000 /* rows below which a level's sweeps and products run on one thread */
 
 static int grow_vectors(sph_amg_level *L, int n) {
     if (n <= L->vcap) return 0;
@@ -138,7 +136,7 @@ static int transpose(const sph_csr *a, int m, sph_csr *t, int *cur) {
  * matrix and vectors 13 %, P and R 12 %, R (A P) 10 %, strength 5 %, aggregation 4 %. */
 static int spgemm(sph_amg *g, const sph_csr *a, const sph_csr *b, int m, sph_csr *c, int threads) {
     int n = a->n;
-    if (n < AMG_PAR_MIN) threads = 1;
+    if (n < SPH_AMG_PAR_MIN) threads = 1;
     if (threads > SPH_AMG_MAX_THREADS) threads = SPH_AMG_MAX_THREADS;
     long need = (long)(m > 0 ? m : 1) * threads;
     if (need > g->pcap) {
@@ -400,462 +398,10 @@ static void cholesky_solve(const double *c, int n, const double *b, double *x) {
     }
 }
 
-/* The smoother's copy (every level but the coarsest; "finest level" below, the same
- * holds on the coarse levels, whose operators are ours: on a W-cycle level the second
- * visit's residual is a full product on the copy, b - D x - (L + U) x).
- * The finest level's cycle reads the fine matrix three times (forward sweep, residual, backward sweep) and
- * CG reads it once more per iteration: at 10^5 rows (27 nonzeros a row, 33 MB) the step is
- * bound by that traffic. Three savings:
- *   - the forward sweep starts from x = 0, so it needs only L (the entries of earlier rows of
- *     the same thread block), and after it b - A x = -U x (the other off-diagonals): the
- *     forward sweep and the residual read the matrix once between them, not twice;
- *   - the smoother's copy holds the off-diagonals in float (the diagonal stays double).
- *     They are rounded toward zero, which keeps a diagonally dominant row dominant, so the
- *     copy stays positive (semi)definite like the matrix and the cycle a symmetric positive
- *     definite preconditioner (CG's own product is in double). The engine's fine matrices
- *     are diagonally dominant; a Galerkin coarse operator need not be, and there the
- *     rounding (a relative 6e-8 of each entry) is far below its smallest eigenvalue. The
- *     copy's diagonal is the smoother's (spgemm: a zero-operator cluster's is its
- *     off-diagonal sum), also in the W-cycle's second residual: the cycle is that of the
- *     copy's symmetric operator throughout;
- *   - its columns are 16-bit offsets from the row when they all fit (rows in cell order:
- *     a row's neighbours are a few rows of cells away), int32 otherwise: 6 bytes a nonzero
- *     instead of 12.
- * The copy is made at setup from the matrix of then (and by sph_amg_refresh / reuse).
- * Measured at 10^5 particles (squeeze, 1 thread, medians of 3 interleaved runs on a loaded
- * machine): the two-read split with float values made the solves ~15 % faster; the
- * 16-bit offsets and the copy on the coarse levels too: the cycle 5.25 -> 4.53 ms (medians
- * of 5, a 102,400-row SPH-like stencil, 1 thread; the same iteration counts in the unit
- * tests). Tried and dropped: four partial sums
- * in the row products (to break the chain of dependent additions): no change in the
- * product's 0.5 ns a nonzero (the rows overlap in the processor already). */
-/* Measured and not kept (session 7): a Chebyshev smoother on the finest level in place of
- * Gauss-Seidel (the polynomial in D^-1 A of Saad's Algorithm 12.1 on [beta / ratio, beta],
- * beta the Gershgorin bound of the copy's D^-1 A; from x = 0 before the coarse correction and
- * the same polynomial on the residual after it, so the cycle stays symmetric; its sweeps are
- * products on this copy, fused with the vector updates; degree k costs 2k products a cycle
- * against Gauss-Seidel's two sweeps). The premise was a Gauss-Seidel sweep bound by its
- * recurrence at ~2 ns a nonzero; measured on the unit test's SPH-like stencil (102,400 rows,
- * 2.54e6 nonzeros, 1 thread, medians of 15) it is not: the forward sweep on L with the
- * residual -U x 1.34 ms (0.53 ns a nonzero), the backward sweep 1.12 ms (0.44 ns), a product
- * on this copy 0.55 ns and CG's double CSR product 0.55 ns a nonzero. Each solve of the
- * squeeze at 10^5 particles (Bn = 5, M = 800, Re = 1, V = -1, dx = 1/450, steps 4-11) run
- * with both smoothers in one process, order alternating: CG iterations per pressure-type
- * solve and per viscous pair, Gauss-Seidel -> Chebyshev, and the Chebyshev solve's time over
- * Gauss-Seidel's: degree 2, ratio 4: 5.3 -> 5.3 and 14.6 -> 14.0, x1.51 and x1.52; degree 2,
- * ratio 2.5: 5.3 -> 5.2, 14.6 -> 14.4, x1.52, x1.65; degree 3, ratio 4: 5.3 -> 4.8,
- * 14.6 -> 12.7, x1.82, x1.94; degree 1 (damped Jacobi, omega 0.8): 5.3 -> 6.1, 15.1 -> 17.9,
- * x1.13, x1.19; omega 2/3: 6.5, 19.1, x1.19, x1.29. With the same iterations the polynomial
- * costs twice the sweeps: no gain at any degree. (beta is 2 on the stencil: a zero row sum.) */
-#if defined(__GNUC__)
-#define AMG_LIKELY(c) __builtin_expect(!!(c), 1)
-#define AMG_NOINLINE __attribute__((noinline))
-#else
-#define AMG_LIKELY(c) (c)
-#define AMG_NOINLINE
-#endif
-/* v tiny, huge or not finite: rounded to nearest, then one unit in the last place back
- * when that was away from zero */
-static AMG_NOINLINE float to_float0_rare(double v) {
-    float f = (float)v;
-    uint32_t u;
-    memcpy(&u, &f, sizeof u);
-    u -= (uint32_t)(fabsf(f) > fabs(v));
-    memcpy(&f, &u, sizeof f);
-    return f;
-}
-
-static inline float to_float0(double v) {
-    uint64_t b;
-    memcpy(&b, &v, sizeof b);
-    if (AMG_LIKELY(((b >> 52) & 0x7ff) - 897u < 254u)) { /* |v| in float's normal range: */
-        b &= ~(uint64_t)0x1fffffff; /* the 29 mantissa bits a float does not hold, dropped: */
-        double t;                   /* toward zero, and exact in float */
-        memcpy(&t, &b, sizeof t);
-        return (float)t;
-    }
-    return to_float0_rare(v);
-}
-
-/* Rows lo..hi-1 of a thread block into the copy (f16: a constant where it is inlined);
- * with a2 (a second system of a's structure) its values into fval2 and fdinv2 in the same
- * pass. */
-static inline int split_rows(sph_amg_split *S, const sph_csr *a, const sph_csr *a2, int lo, int hi, int f16,
-                             float *fval, double *fdinv) {
-    const int *st = a->start, *col = a->col;
-    const double *val = a->val, *val2 = a2 ? a2->val : 0;
-    int16_t *fofs = S->fofs;
-    float *fval2 = S->fval2;
-    int *fcol = S->fcol, *fs = S->fs, *fm = S->fm, *fu = S->fu, ovf = 0;
-    for (int i = lo; i < hi; i++) { /* L from the row's start up, U from its end down */
-        int el = st[i], eu = st[i + 1];
-        fs[i] = el;
-        for (int k = st[i]; k < st[i + 1]; k++) {
-            int j = col[k];
-            if (j == i) continue;
-            int low = (j >= lo) & (j < i); /* branch-free: L or U is data-dependent */
-            eu -= 1 - low;
-            int e = low ? el : eu;
-            el += low;
-            if (f16) {
-                int d = j - i;
-                ovf |= d != (int16_t)d;
-                fofs[e] = (int16_t)d;
-            } else {
-                fcol[e] = j;
-            }
-            fval[e] = to_float0(val[k]);
-            if (a2) fval2[e] = to_float0(val2[k]);
-        }
-        /* the diagonal's slots between L and U: zeros (column i), so that the backward sweep
-         * and the residual run over the row as one range (one loop exit a row instead of
-         * two; s - 0 x_i = s: the same figures bit for bit). On the unit test's stencil with
-         * a quarter of the entries dropped at random (row lengths that vary as the SPH
-         * neighbour counts do) the backward sweep 2.15 -> 1.52 ms; at 10^5 particles
-         * (squeeze, each solve run both ways in one process) only x0.99 on the pressure-type
-         * solves and x0.96-0.99 on the viscous pairs. */
-        for (int e = el; e < eu; e++) {
-            if (f16) fofs[e] = 0;
-            else fcol[e] = i;
-            fval[e] = 0.0f;
-            if (a2) fval2[e] = 0.0f;
-        }
-        fm[i] = el;
-        fu[i] = eu;
-        fdinv[i] = 1.0 / a->diag[i];
-        if (a2) S->fdinv2[i] = 1.0 / a2->diag[i];
-    }
-    return ovf;
-}
-
-/* split_rows with f16 and the presence of a2 constants */
-static int split_block(sph_amg_split *S, const sph_csr *a, const sph_csr *a2, int lo, int hi, int f16, float *fval,
-                       double *fdinv) {
-    if (a2) return f16 ? split_rows(S, a, a2, lo, hi, 1, fval, fdinv) : split_rows(S, a, a2, lo, hi, 0, fval, fdinv);
-    return f16 ? split_rows(S, a, 0, lo, hi, 1, fval, fdinv) : split_rows(S, a, 0, lo, hi, 0, fval, fdinv);
-}
-
-/* Fill the split copy; columns as int16 offsets j - i when all fit (the rows are in cell
- * order, so a row's neighbours are within a few rows of cells of it), else as int32.
- * Measured on the unit test's SPH-like stencil (102,400 rows, 2.54e6 nonzeros, 1 thread,
- * caches flushed before each call, medians of 15, the copy bit for bit the same): 5.9 -> 4.9
- * ms (2.35 -> 1.93 ns a nonzero) with the column format a constant in each loop, no
- * parallel region for one block, and the rounding toward zero done by dropping the mantissa
- * bits a float does not hold (it was: round to nearest, compare, step back). The copies were
- * a third of the viscous setup at 10^5 particles (the fine level's, the v component's, the
- * pressure hierarchy's at each reuse). Without the range test in to_float0 (the drop alone,
- * not toward zero for tiny values, infinite for huge ones) 4.1 ms: not taken. */
-static int split_fill(sph_amg_split *S, const sph_csr *a, const sph_csr *a2, int threads, int nb, int f16,
-                      float *fval, double *fdinv) {
-    int n = a->n, ovf = 0;
-    if (nb == 1) return split_block(S, a, a2, 0, n, f16, fval, fdinv);
-#pragma omp parallel for schedule(static) num_threads(threads) reduction(| : ovf)
-    for (int t = 0; t < nb; t++) {
-        int lo = (int)((long)n * t / nb), hi = (int)((long)n * (t + 1) / nb);
-        ovf |= split_block(S, a, a2, lo, hi, f16, fval, fdinv);
-    }
-    return ovf;
-}
-
-/* room for a second system's values (sph_amg_second, sph_amg_setup_pair) */
-static int grow2(sph_amg_split *S, int n, int nnz) {
-    if (n + 1 > S->fcap2_n) {
-        int cap = n + 1 + n / 4 + 16;
-        if (sph_grow((void **)&S->fdinv2, sizeof(double), cap)) return -1;
-        S->fcap2_n = cap;
-    }
-    if (nnz > S->fcap2_nnz) {
-        long cap = nnz + nnz / 4 + 16;
-        float *v = realloc(S->fval2, sizeof(float) * (size_t)cap);
-        if (!v) return -1;
-        S->fval2 = v;
-        S->fcap2_nnz = cap;
-    }
-    return 0;
-}
-
-/* The copy of a (and of a2's values when a2 is given: the copy's second system). */
-static int split_build(sph_amg_split *S, const sph_csr *a, const sph_csr *a2, int threads) {
-    int n = a->n, nnz = a->start[n];
-    if (a2 && grow2(S, n, nnz)) return -1;
-    if (n + 1 > S->fcap_n) {
-        int cap = n + 1 + n / 4 + 16;
-        if (sph_grow((void **)&S->fs, sizeof(int), cap) || sph_grow((void **)&S->fm, sizeof(int), cap) ||
-            sph_grow((void **)&S->fu, sizeof(int), cap) || sph_grow((void **)&S->fdinv, sizeof(double), cap))
-            return -1;
-        S->fcap_n = cap;
-    }
-    if (nnz > S->fcap_nnz) {
-        long cap = nnz + nnz / 4 + 16;
-        int16_t *o = realloc(S->fofs, sizeof(int16_t) * (size_t)cap);
-        if (!o) return -1;
-        S->fofs = o;
-        float *v = realloc(S->fval, sizeof(float) * (size_t)cap);
-        if (!v) return -1;
-        S->fval = v;
-        S->fcap_nnz = cap;
-    }
-    int nb = n < AMG_PAR_MIN || threads < 1 ? 1 : threads;
-    S->fblocks = nb;
-    S->n = n;
-    S->fs[n] = nnz;
-    S->f16 = 1;
-    S->has2 = a2 != 0;
-    if (!split_fill(S, a, a2, threads, nb, 1, S->fval, S->fdinv)) return 0;
-    /* an offset beyond int16: int32 columns */
-    S->f16 = 0;
-    if (nnz > S->fcolcap) {
-        long cap = nnz + nnz / 4 + 16;
-        int *q = realloc(S->fcol, sizeof(int) * (size_t)cap);
-        if (!q) return -1;
-        S->fcol = q;
-        S->fcolcap = cap;
-    }
-    split_fill(S, a, a2, threads, nb, 0, S->fval, S->fdinv);
-    return 0;
-}
-
 int sph_amg_second(sph_amg *g, const sph_csr *a2, int threads) {
-    sph_amg_split *S = &g->lev[0].S;
+    sph_smoother *S = &g->lev[0].S;
     if (g->levels < 2 || S->n != a2->n) return 0;
-    int n = a2->n, nnz = a2->start[n];
-    if (grow2(S, n, nnz)) return -1;
-    /* the same structure: the columns are rewritten with what they hold */
-    split_fill(S, a2, 0, threads, S->fblocks, S->f16, S->fval2, S->fdinv2);
-    S->has2 = 1;
-    return 0;
-}
-
-/* The sweeps, for either column format: COL(k) is the column of entry k of row i. */
-#define FINE_SWEEPS(SUF, IT, COL)                                                                          \
-    /* x = forward sweep from x = 0 on the L part; r = -U x (= b - A x). */                                \
-    static void fine_forward_##SUF(const sph_amg_split *S, int n, const double *b, double *x, double *r,      \
-                                   const IT *fc, int threads) {                                          \
-        int nb = S->fblocks;                                                                               \
-        const int *fs = S->fs, *fm = S->fm, *fu = S->fu;                                                   \
-        const float *fv = S->fval;                                                                         \
-        const double *dinv = S->fdinv;                                                                     \
-        _Pragma("omp parallel num_threads(nb > 1 ? threads : 1)") {                                       \
-            _Pragma("omp for schedule(static)") for (int t = 0; t < nb; t++) {                             \
-                int lo = (int)((long)n * t / nb), hi = (int)((long)n * (t + 1) / nb);                      \
-                for (int i = lo; i < hi; i++) {                                                            \
-                    double s = b[i];                                                                       \
-                    for (int k = fs[i]; k < fm[i]; k++) s -= fv[k] * x[COL(k)];                            \
-                    x[i] = s * dinv[i];                                                                    \
-                }                                                                                          \
-            }                                                                                              \
-            _Pragma("omp for schedule(static)") for (int i = 0; i < n; i++) {                              \
-                double s = 0.0;                                                                            \
-                for (int k = fu[i]; k < fs[i + 1]; k++) s -= fv[k] * x[COL(k)];                            \
-                r[i] = s;                                                                                  \
-            }                                                                                              \
-        }                                                                                                  \
-    }                                                                                                      \
-    /* Backward sweep on the whole copy (hybrid across blocks: other blocks' values of before). */        \
-    static void fine_backward_##SUF(const sph_amg_split *S, int n, const double *b, double *x, double *tmp,   \
-                                    const IT *fc, int threads) {                                         \
-        int nb = S->fblocks;                                                                               \
-        const int *fs = S->fs, *fm = S->fm, *fu = S->fu;                                                   \
-        const float *fv = S->fval;                                                                         \
-        const double *dinv = S->fdinv;                                                                     \
-        if (nb <= 1) {                                                                                     \
-            for (int i = n - 1; i >= 0; i--) {                                                             \
-                double s = b[i];                                                                           \
-                for (int k = fs[i]; k < fs[i + 1]; k++) s -= fv[k] * x[COL(k)];                            \
-                x[i] = s * dinv[i];                                                                        \
-            }                                                                                              \
-            return;                                                                                        \
-        }                                                                                                  \
-        memcpy(tmp, x, sizeof(double) * (size_t)n);                                                        \
-        _Pragma("omp parallel for schedule(static) num_threads(threads)") for (int t = 0; t < nb; t++) {  \
-            int lo = (int)((long)n * t / nb), hi = (int)((long)n * (t + 1) / nb);                          \
-            for (int i = hi - 1; i >= lo; i--) {                                                           \
-                double s = b[i];                                                                           \
-                for (int k = fs[i]; k < fm[i]; k++) s -= fv[k] * x[COL(k)]; /* same block */               \
-                for (int k = fu[i]; k < fs[i + 1]; k++) {                                                  \
-                    int j = COL(k);                                                                        \
-                    s -= fv[k] * (j >= lo && j < hi ? x[j] : tmp[j]);                                      \
-                }                                                                                          \
-                x[i] = s * dinv[i];                                                                        \
-            }                                                                                              \
-        }                                                                                                  \
-    }
-
-/* r = b - A x on the copy (the second visit of a W-cycle level: x is no longer zero) */
-#define SPLIT_RESIDUAL(SUF, IT, COL)                                                                       \
-    static void split_residual_##SUF(const sph_amg_split *S, int n, const double *b, const double *x,  \
-                                     double *r, const IT *fc, int threads) {                             \
-        const int *fs = S->fs;                                                                             \
-        const float *fv = S->fval;                                                                         \
-        const double *dinv = S->fdinv;                                                                     \
-        _Pragma("omp parallel for schedule(static) num_threads(n < AMG_PAR_MIN ? 1 : threads)")           \
-        for (int i = 0; i < n; i++) {                                                                      \
-            double s = b[i] - x[i] / dinv[i];                                                              \
-            for (int k = fs[i]; k < fs[i + 1]; k++) s -= fv[k] * x[COL(k)];                                \
-            r[i] = s;                                                                                      \
-        }                                                                                                  \
-    }
-
-#define COL16(k) (i + fc[k])
-#define COL32(k) (fc[k])
-FINE_SWEEPS(16, int16_t, COL16)
-FINE_SWEEPS(32, int, COL32)
-SPLIT_RESIDUAL(16, int16_t, COL16)
-SPLIT_RESIDUAL(32, int, COL32)
-
-static void split_forward(const sph_amg_split *S, int n, const double *b, double *x, double *r, int threads) {
-    if (S->f16) fine_forward_16(S, n, b, x, r, S->fofs, threads);
-    else fine_forward_32(S, n, b, x, r, S->fcol, threads);
-}
-
-static void split_backward(const sph_amg_split *S, int n, const double *b, double *x, double *tmp, int threads) {
-    if (S->f16) fine_backward_16(S, n, b, x, tmp, S->fofs, threads);
-    else fine_backward_32(S, n, b, x, tmp, S->fcol, threads);
-}
-
-static void split_residual(const sph_amg_split *S, int n, const double *b, const double *x, double *r, int threads) {
-    if (S->f16) split_residual_16(S, n, b, x, r, S->fofs, threads);
-    else split_residual_32(S, n, b, x, r, S->fcol, threads);
-}
-
-/* Two right-hand sides at once (sph_amg_apply2): the same sweeps, each system with its own
- * values (v1, d1 and v2, d2: the finest level's two systems; on the coarse levels both are
- * the level's own), the structure read once for both. Per system, the arithmetic is that
- * of the one-system sweeps above, in the same order. */
-#define FINE_SWEEPS2(SUF, IT, COL)                                                                         \
-    /* s1 -= sum v1[k] x1[col k], s2 likewise, over the entries [k0, k1) of row i, in order */             \
-    static inline void row2_##SUF(const IT *fc, int i, int k0, int k1, const float *v1, const float *v2,   \
-                                  const double *x1, const double *x2, double *s1, double *s2) {             \
-        double a1 = *s1, a2 = *s2;                                                                         \
-        (void)i; /* COL32 does not need it */                                                              \
-        for (int k = k0; k < k1; k++) {                                                                    \
-            int j = COL(k);                                                                                \
-            a1 -= v1[k] * x1[j];                                                                           \
-            a2 -= v2[k] * x2[j];                                                                           \
-        }                                                                                                  \
-        *s1 = a1;                                                                                          \
-        *s2 = a2;                                                                                          \
-    }                                                                                                      \
-    /* the same over the row's L, then its U */                                                            \
-    static inline void row2_lu_##SUF(const sph_amg_split *S, const IT *fc, int i, const float *v1,         \
-                                     const float *v2, const double *x1, const double *x2, double *s1,      \
-                                     double *s2) {                                                         \
-        row2_##SUF(fc, i, S->fs[i], S->fs[i + 1], v1, v2, x1, x2, s1, s2);                                 \
-    }                                                                                                      \
-    static void fine_forward2_##SUF(const sph_amg_split *S, int n, const float *v1, const float *v2,       \
-                                    const double *d1, const double *d2, const double *b1, const double *b2, \
-                                    double *x1, double *x2, double *r1, double *r2, const IT *fc, int threads) { \
-        int nb = S->fblocks;                                                                               \
-        const int *fs = S->fs, *fm = S->fm, *fu = S->fu;                                                   \
-        _Pragma("omp parallel num_threads(nb > 1 ? threads : 1)") {                                       \
-            _Pragma("omp for schedule(static)") for (int t = 0; t < nb; t++) {                             \
-                int lo = (int)((long)n * t / nb), hi = (int)((long)n * (t + 1) / nb);                      \
-                for (int i = lo; i < hi; i++) {                                                            \
-                    double s1 = b1[i], s2 = b2[i];                                                         \
-                    row2_##SUF(fc, i, fs[i], fm[i], v1, v2, x1, x2, &s1, &s2);                             \
-                    x1[i] = s1 * d1[i];                                                                    \
-                    x2[i] = s2 * d2[i];                                                                    \
-                }                                                                                          \
-            }                                                                                              \
-            _Pragma("omp for schedule(static)") for (int i = 0; i < n; i++) {                              \
-                double s1 = 0.0, s2 = 0.0;                                                                 \
-                row2_##SUF(fc, i, fu[i], fs[i + 1], v1, v2, x1, x2, &s1, &s2);                             \
-                r1[i] = s1;                                                                                \
-                r2[i] = s2;                                                                                \
-            }                                                                                              \
-        }                                                                                                  \
-    }                                                                                                      \
-    static void fine_backward2_##SUF(const sph_amg_split *S, int n, const float *v1, const float *v2,      \
-                                     const double *d1, const double *d2, const double *b1, const double *b2, \
-                                     double *x1, double *x2, double *t1, double *t2, const IT *fc, int threads) { \
-        int nb = S->fblocks;                                                                               \
-        const int *fs = S->fs, *fm = S->fm, *fu = S->fu;                                                   \
-        if (nb <= 1) {                                                                                     \
-            for (int i = n - 1; i >= 0; i--) {                                                             \
-                double s1 = b1[i], s2 = b2[i];                                                             \
-                row2_lu_##SUF(S, fc, i, v1, v2, x1, x2, &s1, &s2);                                         \
-                x1[i] = s1 * d1[i];                                                                        \
-                x2[i] = s2 * d2[i];                                                                        \
-            }                                                                                              \
-            return;                                                                                        \
-        }                                                                                                  \
-        memcpy(t1, x1, sizeof(double) * (size_t)n);                                                        \
-        memcpy(t2, x2, sizeof(double) * (size_t)n);                                                        \
-        _Pragma("omp parallel for schedule(static) num_threads(threads)") for (int t = 0; t < nb; t++) {  \
-            int lo = (int)((long)n * t / nb), hi = (int)((long)n * (t + 1) / nb);                          \
-            for (int i = hi - 1; i >= lo; i--) {                                                           \
-                double s1 = b1[i], s2 = b2[i];                                                             \
-                row2_##SUF(fc, i, fs[i], fm[i], v1, v2, x1, x2, &s1, &s2); /* same block */                \
-                for (int k = fu[i]; k < fs[i + 1]; k++) {                                                  \
-                    int j = COL(k), in = j >= lo && j < hi;                                                \
-                    s1 -= v1[k] * (in ? x1[j] : t1[j]);                                                    \
-                    s2 -= v2[k] * (in ? x2[j] : t2[j]);                                                    \
-                }                                                                                          \
-                x1[i] = s1 * d1[i];                                                                        \
-                x2[i] = s2 * d2[i];                                                                        \
-            }                                                                                              \
-        }                                                                                                  \
-    }                                                                                                      \
-    static void split_residual2_##SUF(const sph_amg_split *S, int n, const float *v1, const float *v2,     \
-                                      const double *d1, const double *d2, const double *b1, const double *b2, \
-                                      const double *x1, const double *x2, double *r1, double *r2, const IT *fc, \
-                                      int threads) {                                                     \
-        _Pragma("omp parallel for schedule(static) num_threads(n < AMG_PAR_MIN ? 1 : threads)")           \
-        for (int i = 0; i < n; i++) {                                                                      \
-            double s1 = b1[i] - x1[i] / d1[i], s2 = b2[i] - x2[i] / d2[i];                                 \
-            row2_lu_##SUF(S, fc, i, v1, v2, x1, x2, &s1, &s2);                                             \
-            r1[i] = s1;                                                                                    \
-            r2[i] = s2;                                                                                    \
-        }                                                                                                  \
-    }
-
-FINE_SWEEPS2(16, int16_t, COL16)
-FINE_SWEEPS2(32, int, COL32)
-
-/* A level's values for the two systems (level 0: the second's are sph_amg_second's). */
-typedef struct split_vals2 {
-    const float *v1, *v2;
-    const double *d1, *d2;
-} split_vals2;
-
-static split_vals2 vals2(const sph_amg_split *S, int l) {
-    split_vals2 q = {S->fval, S->fval, S->fdinv, S->fdinv};
-    if (l == 0 && S->has2) {
-        q.v2 = S->fval2;
-        q.d2 = S->fdinv2;
-    }
-    return q;
-}
-
-static void split_forward2(const sph_amg_split *S, split_vals2 q, int n, const double *b1, const double *b2,
-                           double *x1, double *x2, double *r1, double *r2, int threads) {
-    if (S->f16) fine_forward2_16(S, n, q.v1, q.v2, q.d1, q.d2, b1, b2, x1, x2, r1, r2, S->fofs, threads);
-    else fine_forward2_32(S, n, q.v1, q.v2, q.d1, q.d2, b1, b2, x1, x2, r1, r2, S->fcol, threads);
-}
-
-static void split_backward2(const sph_amg_split *S, split_vals2 q, int n, const double *b1, const double *b2,
-                            double *x1, double *x2, double *t1, double *t2, int threads) {
-    if (S->f16) fine_backward2_16(S, n, q.v1, q.v2, q.d1, q.d2, b1, b2, x1, x2, t1, t2, S->fofs, threads);
-    else fine_backward2_32(S, n, q.v1, q.v2, q.d1, q.d2, b1, b2, x1, x2, t1, t2, S->fcol, threads);
-}
-
-static void split_residual2(const sph_amg_split *S, split_vals2 q, int n, const double *b1, const double *b2,
-                            const double *x1, const double *x2, double *r1, double *r2, int threads) {
-    if (S->f16) split_residual2_16(S, n, q.v1, q.v2, q.d1, q.d2, b1, b2, x1, x2, r1, r2, S->fofs, threads);
-    else split_residual2_32(S, n, q.v1, q.v2, q.d1, q.d2, b1, b2, x1, x2, r1, r2, S->fcol, threads);
-}
-
-static void split_free(sph_amg_split *S) {
-    free(S->fs);
-    free(S->fm);
-    free(S->fu);
-    free(S->fcol);
-    free(S->fofs);
-    free(S->fval);
-    free(S->fdinv);
-    free(S->fval2);
-    free(S->fdinv2);
-    memset(S, 0, sizeof *S);
+    return sph_smoother_second(S, a2, threads);
 }
 
 static int setup_impl(sph_amg *g, const sph_csr *a, const sph_csr *a2, int threads) {
@@ -881,7 +427,7 @@ static int setup_impl(sph_amg *g, const sph_csr *a, const sph_csr *a2, int threa
     }
     g->levels = l + 1;
     for (int q = 0; q < l; q++) /* the smoothers' copies (not the coarsest: solved directly) */
-        if (split_build(&g->lev[q].S, q ? &g->lev[q].A : a, q ? 0 : a2, threads)) {
+        if (sph_smoother_build(&g->lev[q].S, q ? &g->lev[q].A : a, q ? 0 : a2, threads)) {
             g->levels = 0;
             return -1;
         }
@@ -927,7 +473,7 @@ int sph_amg_setup_pair(sph_amg *g, const sph_csr *a, const sph_csr *a2, int thre
 /* One Gauss-Seidel sweep on a x = b (forward or backward); hybrid across threads. */
 static void gs_sweep(const sph_csr *a, const double *b, double *x, double *tmp, int backward, int threads) {
     int n = a->n;
-    if (n < AMG_PAR_MIN) threads = 1;
+    if (n < SPH_AMG_PAR_MIN) threads = 1;
     if (threads <= 1) {
         for (int s = 0; s < n; s++) {
             int i = backward ? n - 1 - s : s;
@@ -959,7 +505,7 @@ static void gs_sweep(const sph_csr *a, const double *b, double *x, double *tmp, 
 }
 
 static void matvec(const sph_csr *a, const double *x, double *y, int threads) {
-    sph_csr_matvec(a, x, y, a->n < AMG_PAR_MIN ? 1 : threads);
+    sph_csr_matvec(a, x, y, a->n < SPH_AMG_PAR_MIN ? 1 : threads);
 }
 
 /* x += P e, the coarse correction: the product (the sums of sph_csr_matvec) and the update
@@ -973,7 +519,7 @@ static void prolong_add(const sph_csr *p, const double *e, double *x, int thread
     int n = p->n;
     const int *st = p->start, *col = p->col;
     const double *val = p->val;
-#pragma omp parallel for schedule(static) num_threads(n < AMG_PAR_MIN ? 1 : threads)
+#pragma omp parallel for schedule(static) num_threads(n < SPH_AMG_PAR_MIN ? 1 : threads)
     for (int i = 0; i < n; i++) {
         double s = 0.0;
         for (int k = st[i]; k < st[i + 1]; k++) s += val[k] * e[col[k]];
@@ -999,14 +545,14 @@ static void vcycle(sph_amg *g, int l, const sph_csr *a, const double *b, double 
     sph_amg_level *C = &g->lev[l + 1];
     int visits = l >= (g->wcycle_from > 0 ? g->wcycle_from : 1) ? 2 : 1;
     if (sweeps == 1 && L->S.n == n) { /* through the smoother's copy */
-        split_forward(&L->S, n, b, x, L->r, threads);
+        sph_smoother_forward(&L->S, n, b, x, L->r, threads);
         for (int v = 0; v < visits; v++) {
-            if (v > 0) split_residual(&L->S, n, b, x, L->r, threads);
+            if (v > 0) sph_smoother_residual(&L->S, n, b, x, L->r, threads);
             matvec(&L->R, L->r, C->b, threads);
             vcycle(g, l + 1, &C->A, C->b, C->x, threads);
             prolong_add(&L->P, C->x, x, threads);
         }
-        split_backward(&L->S, n, b, x, L->t, threads);
+        sph_smoother_backward(&L->S, n, b, x, L->t, threads);
         return;
     }
     for (int i = 0; i < n; i++) x[i] = 0.0;
@@ -1040,7 +586,7 @@ static void matvec2(const sph_csr *a, const double *x1, const double *x2, double
     int n = a->n;
     const int *st = a->start, *col = a->col;
     const double *val = a->val;
-#pragma omp parallel for schedule(static) num_threads(n < AMG_PAR_MIN ? 1 : threads)
+#pragma omp parallel for schedule(static) num_threads(n < SPH_AMG_PAR_MIN ? 1 : threads)
     for (int i = 0; i < n; i++) csr_row2(st, col, val, i, x1, x2, &y1[i], &y2[i]);
 }
 
@@ -1049,7 +595,7 @@ static void prolong_add2(const sph_csr *p, const double *e1, const double *e2, d
     int n = p->n;
     const int *st = p->start, *col = p->col;
     const double *val = p->val;
-#pragma omp parallel for schedule(static) num_threads(n < AMG_PAR_MIN ? 1 : threads)
+#pragma omp parallel for schedule(static) num_threads(n < SPH_AMG_PAR_MIN ? 1 : threads)
     for (int i = 0; i < n; i++) {
         double s1, s2;
         csr_row2(st, col, val, i, e1, e2, &s1, &s2);
@@ -1060,7 +606,7 @@ static void prolong_add2(const sph_csr *p, const double *e1, const double *e2, d
 
 /* The second system alone: the finest level's smoother takes its values for the cycle. */
 static void vcycle_second(sph_amg *g, int l, const sph_csr *a2, const double *b, double *x, int threads) {
-    sph_amg_split *S = &g->lev[0].S;
+    sph_smoother *S = &g->lev[0].S;
     int swap = l == 0 && S->has2;
     if (swap) {
         float *v = S->fval;
@@ -1087,15 +633,15 @@ static void vcycle2(sph_amg *g, int l, const sph_csr *a1, const sph_csr *a2, con
     }
     sph_amg_level *C = &g->lev[l + 1];
     int visits = l >= (g->wcycle_from > 0 ? g->wcycle_from : 1) ? 2 : 1;
-    split_vals2 q = vals2(&L->S, l);
-    split_forward2(&L->S, q, n, b1, b2, x1, x2, L->r, L->r2, threads);
+    sph_smoother_pair q = sph_smoother_pair_of(&L->S, l);
+    sph_smoother_forward2(&L->S, q, n, b1, b2, x1, x2, L->r, L->r2, threads);
     for (int v = 0; v < visits; v++) {
-        if (v > 0) split_residual2(&L->S, q, n, b1, b2, x1, x2, L->r, L->r2, threads);
+        if (v > 0) sph_smoother_residual2(&L->S, q, n, b1, b2, x1, x2, L->r, L->r2, threads);
         matvec2(&L->R, L->r, L->r2, C->b, C->b2, threads);
         vcycle2(g, l + 1, &C->A, &C->A, C->b, C->b2, C->x, C->x2, threads);
         prolong_add2(&L->P, C->x, C->x2, x1, x2, threads);
     }
-    split_backward2(&L->S, q, n, b1, b2, x1, x2, L->t, L->t2, threads);
+    sph_smoother_backward2(&L->S, q, n, b1, b2, x1, x2, L->t, L->t2, threads);
 }
 
 int sph_amg_set_ids(sph_amg *g, int n, const int *row_of, const int *id) {
@@ -1160,7 +706,7 @@ int sph_amg_reuse(sph_amg *g, const sph_csr *a, const int *row_of, const int *id
         return -1;
     }
     g->fine_n = n;
-    if (split_build(&g->lev[0].S, a, 0, threads)) {
+    if (sph_smoother_build(&g->lev[0].S, a, 0, threads)) {
         g->levels = 0;
         return -1;
     }
@@ -1195,7 +741,7 @@ void sph_amg_swap_scratch(sph_amg *a, sph_amg *b) {
 
 int sph_amg_refresh(sph_amg *g, const sph_csr *a, int threads) {
     if (g->levels < 2 || a->n != g->fine_n) return 0;
-    return split_build(&g->lev[0].S, a, 0, threads);
+    return sph_smoother_build(&g->lev[0].S, a, 0, threads);
 }
 
 void sph_amg_apply(sph_amg *g, const sph_csr *a, const double *r, double *z, int threads) {
@@ -1225,7 +771,7 @@ void sph_amg_free(sph_amg *g) {
         free(L->b2);
         free(L->r2);
         free(L->t2);
-        split_free(&L->S);
+        sph_smoother_free(&L->S);
         L->x = L->b = L->r = L->t = 0;
         L->x2 = L->b2 = L->r2 = L->t2 = 0;
         L->vcap = 0;

@@ -48,12 +48,12 @@ typedef struct sph_solve_result {
  * operator, the prolongation P to it from the level above and the restriction R = P^T. */
 #define SPH_AMG_MAX_LEVELS 20
 #define SPH_AMG_MAX_THREADS 64 /* threads of the setup's sparse products (more run as this many) */
-/* A level's smoother copy (amg.c, "The smoother's copy"): the operator's off-diagonals
+/* A level's smoother copy (smoother.c, "The smoother's copy"): the operator's off-diagonals
  * split per row into L (earlier rows of the same thread block) in [fs[i], fm[i]) and the
  * rest, U, in [fu[i], fs[i + 1]) (between them the diagonal's slots, zeros at column i, so
  * [fs[i], fs[i + 1]) is the whole row); values in float (rounded toward zero), columns as 16-bit
  * offsets from the row when they fit, the inverse diagonal in double. */
-typedef struct sph_amg_split {
+typedef struct sph_smoother {
     int n;              /* rows it holds (0: none) */
     int *fs, *fm, *fu;
     int16_t *fofs;      /* columns as offsets j - i (f16), or                              */
@@ -71,7 +71,30 @@ typedef struct sph_amg_split {
     double *fdinv2;
     long fcap2_nnz;
     int fcap2_n, has2;
-} sph_amg_split;
+} sph_smoother;
+#define SPH_AMG_PAR_MIN 4000 /* rows below which a level's sweeps and products run on one thread */
+
+/* smoother.c: build the copy of a (with a2's values as the second system's when given);
+ * add a second system's values later; the sweeps (forward from x = 0 with r = b - A x
+ * after it, backward, residual) on one system or on two at once; free. */
+int sph_smoother_build(sph_smoother *S, const sph_csr *a, const sph_csr *a2, int threads);
+int sph_smoother_second(sph_smoother *S, const sph_csr *a2, int threads);
+void sph_smoother_forward(const sph_smoother *S, int n, const double *b, double *x, double *r, int threads);
+void sph_smoother_backward(const sph_smoother *S, int n, const double *b, double *x, double *tmp, int threads);
+void sph_smoother_residual(const sph_smoother *S, int n, const double *b, const double *x, double *r, int threads);
+/* A level's values for two systems (level 0 with a second system: its own values). */
+typedef struct sph_smoother_pair {
+    const float *v1, *v2;
+    const double *d1, *d2;
+} sph_smoother_pair;
+sph_smoother_pair sph_smoother_pair_of(const sph_smoother *S, int l);
+void sph_smoother_forward2(const sph_smoother *S, sph_smoother_pair q, int n, const double *b1, const double *b2,
+                           double *x1, double *x2, double *r1, double *r2, int threads);
+void sph_smoother_backward2(const sph_smoother *S, sph_smoother_pair q, int n, const double *b1, const double *b2,
+                            double *x1, double *x2, double *t1, double *t2, int threads);
+void sph_smoother_residual2(const sph_smoother *S, sph_smoother_pair q, int n, const double *b1, const double *b2,
+                            const double *x1, const double *x2, double *r1, double *r2, int threads);
+void sph_smoother_free(sph_smoother *S);
 
 typedef struct sph_amg_level {
     sph_csr A;          /* operator (level 0: the fine matrix with duplicate columns merged) */
@@ -79,7 +102,7 @@ typedef struct sph_amg_level {
     double *x, *b, *r, *t; /* work vectors, n each */
     double *x2, *b2, *r2, *t2; /* the same for a second right-hand side (sph_amg_apply2) */
     int vcap;
-    sph_amg_split S;    /* the smoother's copy of the operator (level 0: of the caller's matrix) */
+    sph_smoother S;    /* the smoother's copy of the operator (level 0: of the caller's matrix) */
 } sph_amg_level;
 
 typedef struct sph_amg {
