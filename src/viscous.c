@@ -307,7 +307,9 @@ int sph_viscous_implicit(sph_world *w, double dt) {
     w->st.visc_residual = resid;
 
     /* walls keep their plate's velocity; the viscous force on each plate from u* */
-    double fplate[SPH_MAX_PLATES] = {0};
+    /* then the pressure predictor's term taken back: the projection applies the whole
+     * -grad p^{n+1} / rho (the plates' viscous force is that of u* with it) */
+    double fplate[SPH_MAX_PLATES] = {0}, bdt = w->par.pressure_predictor * dt;
 #pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : fplate[:SPH_MAX_PLATES])
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) {
@@ -320,17 +322,12 @@ int sph_viscous_implicit(sph_world *w, double dt) {
             double wx, wy, cw = wall_coeff(w, i, j, k, &wx, &wy);
             fplate[w->kind[j]] += plate_pull(w, i, j, cw, w->us[i], w->vs[i], wx, wy);
         }
-    }
-    set_plate_viscous_forces(w, fplate);
-    double beta = w->par.pressure_predictor;
-    if (beta > 0) { /* the projection applies the whole -grad p^{n+1} / rho */
-#pragma omp parallel for schedule(static) num_threads(w->threads)
-        for (int i = 0; i < n; i++) {
-            if (w->kind[i] != SPH_FLUID) continue;
-            w->us[i] -= beta * dt * w->xs[i];
-            w->vs[i] -= beta * dt * w->ys[i];
+        if (bdt > 0) {
+            w->us[i] -= bdt * w->xs[i];
+            w->vs[i] -= bdt * w->ys[i];
         }
     }
+    set_plate_viscous_forces(w, fplate);
     sph_boundary_sync(w, w->us, w->vs, 1);
     return 0;
 }
