@@ -69,6 +69,13 @@ static void build(sph_csr *a, int kind, int m) {
         }
 }
 
+/* The smooth right-hand side the multi-solve checks share, n values (malloc'd). */
+static double *smooth_rhs(int n) {
+    double *b = malloc(sizeof(double) * (size_t)n);
+    for (int r = 0; r < n; r++) b[r] = cos(0.05 * r) + 1.0;
+    return b;
+}
+
 static double norm_diff(const double *x, const double *y, int n) {
     double s = 0.0, t = 0.0;
     for (int i = 0; i < n; i++) {
@@ -147,9 +154,7 @@ int main(void) {
         int m = 128, n = m * m;
         sph_csr a = {0};
         build(&a, WIDE, m);
-        double *b = malloc(sizeof(double) * (size_t)n), *x1 = calloc((size_t)n, sizeof(double)),
-               *x2 = calloc((size_t)n, sizeof(double));
-        for (int r = 0; r < n; r++) b[r] = cos(0.05 * r) + 1.0;
+        double *b = smooth_rhs(n), *x1 = calloc((size_t)n, sizeof(double)), *x2 = calloc((size_t)n, sizeof(double));
         sph_solver sv = {0};
         sph_solver_reserve(&sv, n);
         sph_solver_setup(&sv, &a, SPH_SOLVER_AMG, 1);
@@ -198,9 +203,8 @@ int main(void) {
         int m = 128, n = m * m;
         sph_csr a = {0};
         build(&a, WIDE, m);
-        double *b = malloc(sizeof(double) * (size_t)n), *xw = calloc((size_t)n, sizeof(double)),
-               *xv = calloc((size_t)n, sizeof(double)), *x2 = calloc((size_t)n, sizeof(double));
-        for (int r = 0; r < n; r++) b[r] = cos(0.05 * r) + 1.0;
+        double *b = smooth_rhs(n), *xw = calloc((size_t)n, sizeof(double)), *xv = calloc((size_t)n, sizeof(double)),
+               *x2 = calloc((size_t)n, sizeof(double));
         sph_solver sv = {0};
         sph_solver_reserve(&sv, n);
         sph_solver_setup(&sv, &a, SPH_SOLVER_AMG, 1);
