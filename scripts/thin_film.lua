@@ -5,7 +5,7 @@
 -- engine stops it (the message is printed). Writes OUT/thin_film.csv (run, h, a/h, F h^6,
 -- max density error) and OUT/thin_film.png.
 --   build/sph scripts/thin_film.lua [dx=0.025] [kappa=0,0.05] [h_stop=0.15] [out=out/bench]
---                                   [threads=1] [predictor=beta]
+--                                   [threads=1] [predictor=beta] [dc=passes|gmres] [pg=symmetric|difference]
 local sph = require "sph"
 local squeeze = require "sph.squeeze"
 local o = ... or {}

@@ -167,6 +167,8 @@ struct sph_world {
     double *p, *rho, *m;       /* pressure, density, mass                           */
     double *phi;               /* density-correction potential (dt^2 p units)       */
     double *dp;                /* scratch: the density correction's later passes    */
+    double *gm;                /* the GMRES density correction's vectors (pressure.c) */
+    size_t gm_len;             /* doubles in gm                                      */
     double *eta, *gd, *divr;   /* apparent viscosity, shear rate, position div      */
     double *lxx, *lxy, *lyy;   /* kernel-gradient renormalisation (Bonet & Lok 1999) */
     double *gux, *guy, *gvx, *gvy; /* velocity gradient (du/dx, du/dy, dv/dx, dv/dy)  */

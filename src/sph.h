@@ -79,7 +79,17 @@ typedef struct sph_params {
                               and the projection takes it back, so the no-slip walls see
                               the pressure-driven shear inside the step (pressure.c);
                               default 1; ignored with explicit viscosity             */
+    int density_gmres;     /* 1: the density correction minimises the continuity
+                              density's error over the Krylov space of its passes
+                              (GMRES; pressure.c); 0 (default): successive passes,
+                              each with a least-squares step length                 */
+    int pressure_gradient; /* the projection's gradient: SPH_GRAD_SYMMETRIC (default,
+                              momentum-conserving) or SPH_GRAD_DIFFERENCE (first-order
+                              consistent: renormalised sum V_j (p_j - p_i) grad W)    */
 } sph_params;
+
+enum { SPH_GRAD_SYMMETRIC = 0, SPH_GRAD_DIFFERENCE = 1 };
+#define SPH_MAX_GMRES 8
 
 #define SPH_MAX_DENSITY_PASSES 10
 

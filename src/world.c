@@ -31,6 +31,8 @@ void sph_params_default(sph_params *p) {
     p->density_diffusion = 0.0;
     p->density_solve_tol = 1e-3;
     p->pressure_predictor = 1.0;
+    p->density_gmres = 0;
+    p->pressure_gradient = SPH_GRAD_SYMMETRIC;
 }
 
 int sph_world_fail(sph_world *w, const char *fmt, ...) {
@@ -52,7 +54,8 @@ static const char *check_params(const sph_params *p) {
         "max_iter must be positive", "gravity must be finite", "density_relax must be in [0, 1]",
         "shifting must be >= 0", "density_tol must be in [0, 1)", "density_passes must be in [1, 10]",
         "solver must be SPH_SOLVER_AMG or SPH_SOLVER_JACOBI", "density_limit must be in [0, 1) (0: none)", "density_diffusion must be in [0, 0.25]", "density_solve_tol must be in (0, 1)",
-        "pressure_predictor must be in [0, 1]"};
+        "pressure_predictor must be in [0, 1]", "density_gmres must be 0 or 1",
+        "pressure_gradient must be SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE"};
     if (!(p->dx > 0 && isfinite(p->dx))) return bad[0];
     if (!(p->h >= 0 && isfinite(p->h))) return bad[1];
     if (!(p->rho0 > 0 && isfinite(p->rho0))) return bad[2];
@@ -73,6 +76,8 @@ static const char *check_params(const sph_params *p) {
     if (!(p->density_diffusion >= 0 && p->density_diffusion <= 0.25)) return bad[15];
     if (!(p->density_solve_tol > 0 && p->density_solve_tol < 1)) return bad[16];
     if (!(p->pressure_predictor >= 0 && p->pressure_predictor <= 1)) return bad[17];
+    if (p->density_gmres != 0 && p->density_gmres != 1) return bad[18];
+    if (p->pressure_gradient != SPH_GRAD_SYMMETRIC && p->pressure_gradient != SPH_GRAD_DIFFERENCE) return bad[19];
     return 0;
 }
 
@@ -122,6 +127,7 @@ void sph_world_free(sph_world *w) {
     int **oi[] = {&w->cell_start, &w->cell_items, &w->nb_start, &w->nb_j, &w->row_of, &w->vrow_of};
     for (size_t k = 0; k < sizeof oi / sizeof *oi; k++) free(*oi[k]);
     free(w->cand_j);
+    free(w->gm);
     free(w->gsx);
     free(w->gsy);
     free(w->surf);

@@ -14,8 +14,9 @@ function S.stop_height(tau0, F) return (tau0 / (2 * F)) ^ (1 / 3) end
 
 -- opts: dx, Re, Bn, M, mode ("velocity" | "load"), V (plate speed, default 1), F (load,
 -- a compressive force is negative, as in the paper), h_min (how thin the sample will get:
--- sizes the plates), viscosity, shifting, threads, and any other sph.world option via
--- opts.world.
+-- sizes the plates), width and height (the half sample's, default 0.5 and 1: a film
+-- started thin is e.g. width = 1.6, height = 0.2), viscosity, shifting, threads, and any
+-- other sph.world option via opts.world.
 function S.build(opts)
   local dx = opts.dx or 1 / 40
   local Re, Bn, M = opts.Re or 1, opts.Bn or 0, opts.M or 800
@@ -26,13 +27,14 @@ function S.build(opts)
   for k, v in pairs(opts.world or {}) do wopts[k] = v end
   local w = sph.world(wopts)
   local mat = Bn > 0 and sph.bingham{ mu = 1, tau0 = Bn, m = M } or sph.newtonian{ mu = 1 }
-  w:fill{ rect = { 0, 0, 0.5, 1 }, material = mat }
-  -- plates: 3h thick (the kernel support), wide enough for the spread sample (a = 1/(2h))
+  local a0, h0 = opts.width or 0.5, opts.height or 1
+  w:fill{ rect = { 0, 0, a0, h0 }, material = mat }
+  -- plates: 3h thick (the kernel support), wide enough for the spread sample (a = a0 h0 / h)
   local T = math.ceil(3 * w.h / dx - 1e-9) * dx
-  local half = math.max(1.5, 1.25 / (2 * h_min)) + 4 * dx
+  local half = math.max(1.5, 1.25 * a0 * h0 / h_min) + 4 * dx
   half = math.ceil(half / dx) * dx
   local bottom = w:plate{ rect = { -half, -T, half, 0 } }
-  local top = w:plate{ rect = { -half, 1, half, 1 + T }, axis = "y" }
+  local top = w:plate{ rect = { -half, h0, half, h0 + T }, axis = "y" }
   if (opts.mode or "velocity") == "velocity" then
     top:velocity(-(opts.V or 1))
   else

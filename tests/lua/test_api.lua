@@ -16,6 +16,12 @@ T.case("world arguments", function()
   T.checkerror("viscosity", "bad viscosity", sph.world, { dx = 0.1, viscosity = "magic" })
   T.checkerror("solver: \"amg\" or \"jacobi\" expected", "bad solver", sph.world, { dx = 0.1, solver = "ilu" })
   T.checkerror("solver", "solver must be a string", sph.world, { dx = 0.1, solver = 1 })
+  T.checkerror("density_correction: \"passes\" or \"gmres\" expected", "bad density_correction", sph.world,
+               { dx = 0.1, density_correction = "newton" })
+  T.checkerror("pressure_gradient: \"symmetric\" or \"difference\" expected", "bad pressure_gradient", sph.world,
+               { dx = 0.1, pressure_gradient = 2 })
+  T.check(pcall(sph.world, { dx = 0.1, density_correction = "gmres", pressure_gradient = "difference" }),
+          "the thin-film options are accepted")
   T.checkerror("gravity", "bad gravity", sph.world, { dx = 0.1, gravity = 3 })
   T.checkerror("periodic", "bad periodic", sph.world, { dx = 0.1, periodic = { x = { 1 } } })
   T.checkerror("periodic range", "periodic lo >= hi", sph.world, { dx = 0.1, periodic = { x = { 1, 0 } } })
