@@ -699,6 +699,24 @@ static int p_tostring(lua_State *L) {
  * for any other call of a number. */
 static int number_call(lua_State *L) {
     if (lua_gettop(L) >= 2 && luaL_testudata(L, 2, PLATE)) {
+        /* only plate:velocity(...): every number shares this metatable, so plate:mass(50)
+         * (or :force, :position) would otherwise land here and set the velocity to 50. The
+         * caller's name for the call says which field was called; where Lua does not know
+         * it, the number must be the plate's velocity itself. */
+        lua_Debug ar;
+        const char *name = 0;
+        if (lua_getstack(L, 0, &ar) && lua_getinfo(L, "n", &ar)) name = ar.name;
+        lplate *lp;
+        sph_world *w = plate_world(L, 2, &lp);
+        int ok = name ? !strcmp(name, "velocity")
+                      : lua_tonumber(L, 1) == sph_plate_velocity(w, lp->index);
+        if (!ok) {
+            if (name && (!strcmp(name, "mass") || !strcmp(name, "force") || !strcmp(name, "position") ||
+                         !strcmp(name, "index")))
+                return luaL_error(L, "plate.%s is a value, not a method (%s)", name,
+                                  strcmp(name, "mass") ? "it cannot be set" : "set it with plate.mass = m");
+            return luaL_error(L, "attempt to call a number value");
+        }
         lua_remove(L, 1);
         return p_velocity(L);
     }

@@ -75,6 +75,15 @@ T.case("fill and plate", function()
   T.close(top.mass, 3, 0, "plate.mass is settable")
   T.checkerror("cannot be set", "plate.force is read-only", function() top.force = 1 end)
   T.checkerror("positive", "plate mass must be positive", function() top.mass = -1 end)
+  -- every number shares one metatable, whose __call makes plate:velocity(v) work: a call of
+  -- another field must not set the velocity (plate:mass(50) used to drive the plate at 50)
+  T.checkerror("plate.mass is a value, not a method (set it with plate.mass = m)", "plate:mass(m) is an error",
+               function() top:mass(50) end)
+  T.checkerror("plate.force is a value, not a method", "plate:force(f) is an error", function() top:force(5) end)
+  T.checkerror("plate.position is a value", "plate:position(x) is an error", function() top:position(2) end)
+  T.checkerror("attempt to call a number value", "calling another number with a plate is an error",
+               function() local x = 7; return x(top, 1) end)
+  T.close(top.velocity, -1, 0, "none of those calls changed the plate's velocity")
   T.checkerror("unknown field 'bogus'", "field with an unknown name", w.field, w, "bogus")
   local xs = w:field("x")
   T.check(#xs == 100, "field returns one value per fluid particle")
