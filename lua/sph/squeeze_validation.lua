@@ -247,6 +247,21 @@ M.cases = {
       function(h, V, A) return M.newtonian_force(h, V, 1, A) end),
   },
   {
+    -- the same film, Bingham (Bn = 100, M = 100): measured (session 8, one thread) 0.0567 /
+    -- 0.0138 / 0.0401 / 0.0544 at 1/30 .. 1/80, force 1.012 / 0.997 / 0.962 / 0.954 x
+    -- thin-film theory: within 5 % but not converging monotonically (the walls' first-order
+    -- slip lowers the force as the rows multiply? open). With the defaults (passes,
+    -- symmetric gradient) the film blows up at every resolution (non-positive density at
+    -- step 600-835, h ~ 0.18).
+    name = "Bingham squeeze, thin film",
+    error_name = "relative L2 of the plate force against thin-film Bingham theory over h in [0.17, 0.18] (a/h 9.9-11), film started thin (h0 = 0.2, half-width 1.6), Bn = 100, M = 100, Re = 1, density_correction = gmres, pressure_gradient = difference",
+    resolutions = { 1 / 30, 1 / 40, 1 / 60, 1 / 80 },
+    quick = { 1 / 30, 1 / 40 },
+    run = velocity_case("Bingham squeeze, thin film", { Re = 1, Bn = BN, M = 100, h_end = 0.17, h_win = 0.18, width = 1.6, height = 0.2,
+                                                      world = { density_correction = "gmres", pressure_gradient = "difference" } },
+      function(h, V, A) return M.bingham_force(h, V, 1, BN, A) end),
+  },
+  {
     name = "Newtonian squeeze F = 20",
     error_name = "relative error of the slope of h^-5 against t (lubrication: 5 F / mu) over h in [0.35, 0.45], Re = 1",
     -- 1/40 and 1/60 fail: a fluid particle goes through the upper plate near the sample's

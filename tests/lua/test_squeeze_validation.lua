@@ -94,6 +94,20 @@ T.case("Newtonian squeeze in the thin-film regime against lubrication", function
   T.below(rs[2].peak_density_error, 0.01, "Newtonian thin film, dx = 1/40: peak density error under 1 %")
 end)
 
+T.case("Bingham squeeze in the thin-film regime against thin-film theory", function()
+  local rs = study(cases["Bingham squeeze, thin film"])
+  -- the Newtonian case's film, Bn = 100, M = 100 (thin-film options). Measured (session 8,
+  -- one thread): force / theory 1.0116 and 0.9971 (errors 0.0567, 0.0138) with -O2,
+  -- 1.0117 and 0.9960 (0.0582, 0.0239) with -O1. The mean ratio is the stable figure (the
+  -- L2 error carries the force's step-to-step noise): within 0.03 of each build's middle;
+  -- the errors under 0.08. With the defaults this film blows up (squeeze_validation.lua).
+  T.close(rs[1].mean_ratio, 1.012, 0.03, "Bingham thin film, dx = 1/30: force within 0.03 of 1.012 x thin-film theory")
+  T.close(rs[2].mean_ratio, 0.997, 0.03, "Bingham thin film, dx = 1/40: force within 0.03 of 0.997 x thin-film theory")
+  T.below(rs[1].error, 0.08, "Bingham thin film, dx = 1/30: error under 0.08")
+  T.below(rs[2].error, 0.08, "Bingham thin film, dx = 1/40: error under 0.08")
+  T.below(rs[2].peak_density_error, 0.01, "Bingham thin film, dx = 1/40: peak density error under 1 %")
+end)
+
 T.case("Newtonian squeeze under a constant load against lubrication", function()
   local rs, order = study(cases["Newtonian squeeze F = 20"])
   -- measured (one thread, Re = 1; late plate speeds 0.04-0.15, so close to Stokes flow):
