@@ -264,6 +264,10 @@ void sph_boundary_sync(sph_world *w, double *a, double *b, int vector);
 int sph_plate_fill(sph_world *w, const double rect[4], int axis);
 /* No-slip factor beta = 1 + dB/da (clamped) for fluid a and wall particle b. */
 double sph_plate_noslip(const sph_world *w, int a, int b);
+/* distances of fluid particle a and wall particle b from b's plate face nearest to a;
+ * returns 1 for a horizontal face with a over the plate, 2 for a vertical face with a
+ * beside it, 0 for a off the plate's extent */
+int sph_plate_wall_distances(const sph_world *w, int a, int b, double *da, double *db);
 /* Velocity of wall particle b along x, y. */
 void sph_plate_wall_velocity(const sph_world *w, int b, double *vx, double *vy);
 void sph_plate_rigid_velocity(const sph_world *w, int b, double *vx, double *vy);

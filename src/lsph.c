@@ -144,7 +144,7 @@ static int l_world(lua_State *L) {
     static const char *const keys[] = {"dx", "h", "rho", "gravity", "viscosity", "shifting",
                                        "cfl", "cvisc", "cforce", "dt_max", "periodic", "symmetry",
                                        "threads", "tol", "max_iter", "surface", "density_relax",
-                                       "density_tol", "density_passes", "density_limit", "density_diffusion", "density_solve_tol", "pressure_predictor", "solver", "density_correction", "pressure_gradient", 0};
+                                       "density_tol", "density_passes", "density_limit", "density_diffusion", "density_solve_tol", "pressure_predictor", "solver", "density_correction", "pressure_gradient", "wall", 0};
     luaL_checktype(L, 1, LUA_TTABLE);
     sph_lua_opt_only(L, 1, "world", keys);
     sph_params p;
@@ -206,6 +206,14 @@ static int l_world(lua_State *L) {
         if (t != LUA_TSTRING || (strcmp(v, "symmetric") && strcmp(v, "difference")))
             luaL_error(L, "bad argument to 'world' (pressure_gradient: \"symmetric\" or \"difference\" expected)");
         p.pressure_gradient = strcmp(v, "symmetric") ? SPH_GRAD_DIFFERENCE : SPH_GRAD_SYMMETRIC;
+    }
+    lua_pop(L, 1);
+    t = lua_getfield(L, 1, "wall");
+    if (t != LUA_TNIL) {
+        const char *v = lua_tostring(L, -1);
+        if (t != LUA_TSTRING || (strcmp(v, "linear") && strcmp(v, "curved")))
+            luaL_error(L, "bad argument to 'world' (wall: \"linear\" or \"curved\" expected)");
+        p.wall_curved = !strcmp(v, "curved");
     }
     lua_pop(L, 1);
     t = lua_getfield(L, 1, "solver");

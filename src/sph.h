@@ -83,6 +83,10 @@ typedef struct sph_params {
                               density's error over the Krylov space of its passes
                               (GMRES; pressure.c); 0 (default): successive passes,
                               each with a least-squares step length                 */
+    int wall_curved;       /* 1: the no-slip wall velocity extrapolates the fluid's with the
+                              profile's curvature from the momentum balance (viscous.c;
+                              implicit viscosity with the pressure predictor); 0 (default):
+                              the linear (Morris) extrapolation                       */
     int pressure_gradient; /* the projection's gradient: SPH_GRAD_SYMMETRIC (default,
                               momentum-conserving) or SPH_GRAD_DIFFERENCE (first-order
                               consistent: renormalised sum V_j (p_j - p_i) grad W)    */

@@ -32,6 +32,7 @@ void sph_params_default(sph_params *p) {
     p->density_solve_tol = 1e-3;
     p->pressure_predictor = 1.0;
     p->density_gmres = 0;
+    p->wall_curved = 0;
     p->pressure_gradient = SPH_GRAD_SYMMETRIC;
 }
 
@@ -55,7 +56,7 @@ static const char *check_params(const sph_params *p) {
         "shifting must be >= 0", "density_tol must be in [0, 1)", "density_passes must be in [1, 10]",
         "solver must be SPH_SOLVER_AMG or SPH_SOLVER_JACOBI", "density_limit must be in [0, 1) (0: none)", "density_diffusion must be in [0, 0.25]", "density_solve_tol must be in (0, 1)",
         "pressure_predictor must be in [0, 1]", "density_gmres must be 0 or 1",
-        "pressure_gradient must be SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE"};
+        "pressure_gradient must be SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE", "wall_curved must be 0 or 1"};
     if (!(p->dx > 0 && isfinite(p->dx))) return bad[0];
     if (!(p->h >= 0 && isfinite(p->h))) return bad[1];
     if (!(p->rho0 > 0 && isfinite(p->rho0))) return bad[2];
@@ -78,6 +79,7 @@ static const char *check_params(const sph_params *p) {
     if (!(p->pressure_predictor >= 0 && p->pressure_predictor <= 1)) return bad[17];
     if (p->density_gmres != 0 && p->density_gmres != 1) return bad[18];
     if (p->pressure_gradient != SPH_GRAD_SYMMETRIC && p->pressure_gradient != SPH_GRAD_DIFFERENCE) return bad[19];
+    if (p->wall_curved != 0 && p->wall_curved != 1) return bad[20];
     return 0;
 }
 
