@@ -140,6 +140,20 @@ static void axis_range(lua_State *L, int idx, const char *fname, const char *wha
     lua_pop(L, 1);
 }
 
+/* world{key = first | second}: 0 for first, 1 for second, def when absent; anything else
+ * is an error naming both. */
+static int opt_choice(lua_State *L, const char *key, const char *first, const char *second, int def) {
+    int t = lua_getfield(L, 1, key), r = def;
+    if (t != LUA_TNIL) {
+        const char *v = lua_tostring(L, -1);
+        if (t != LUA_TSTRING || (strcmp(v, first) && strcmp(v, second)))
+            luaL_error(L, "bad argument to 'world' (%s: \"%s\" or \"%s\" expected)", key, first, second);
+        r = !strcmp(v, second);
+    }
+    lua_pop(L, 1);
+    return r;
+}
+
 static int l_world(lua_State *L) {
     static const char *const keys[] = {"dx", "h", "rho", "gravity", "viscosity", "shifting",
                                        "cfl", "cvisc", "cforce", "dt_max", "periodic", "symmetry",
@@ -184,46 +198,15 @@ static int l_world(lua_State *L) {
         luaL_error(L, "bad argument to 'world' (gravity: {gx, gy} expected, got %s)", luaL_typename(L, -1));
     }
     lua_pop(L, 1);
-    t = lua_getfield(L, 1, "viscosity");
-    if (t != LUA_TNIL) {
-        const char *v = lua_tostring(L, -1);
-        if (t != LUA_TSTRING || (strcmp(v, "explicit") && strcmp(v, "implicit")))
-            luaL_error(L, "bad argument to 'world' (viscosity: \"implicit\" or \"explicit\" expected)");
-        p.viscosity = strcmp(v, "implicit") ? SPH_VISC_EXPLICIT : SPH_VISC_IMPLICIT;
-    }
-    lua_pop(L, 1);
-    t = lua_getfield(L, 1, "density_correction");
-    if (t != LUA_TNIL) {
-        const char *v = lua_tostring(L, -1);
-        if (t != LUA_TSTRING || (strcmp(v, "passes") && strcmp(v, "gmres")))
-            luaL_error(L, "bad argument to 'world' (density_correction: \"passes\" or \"gmres\" expected)");
-        p.density_gmres = !strcmp(v, "gmres");
-    }
-    lua_pop(L, 1);
-    t = lua_getfield(L, 1, "pressure_gradient");
-    if (t != LUA_TNIL) {
-        const char *v = lua_tostring(L, -1);
-        if (t != LUA_TSTRING || (strcmp(v, "symmetric") && strcmp(v, "difference")))
-            luaL_error(L, "bad argument to 'world' (pressure_gradient: \"symmetric\" or \"difference\" expected)");
-        p.pressure_gradient = strcmp(v, "symmetric") ? SPH_GRAD_DIFFERENCE : SPH_GRAD_SYMMETRIC;
-    }
-    lua_pop(L, 1);
-    t = lua_getfield(L, 1, "wall");
-    if (t != LUA_TNIL) {
-        const char *v = lua_tostring(L, -1);
-        if (t != LUA_TSTRING || (strcmp(v, "linear") && strcmp(v, "curved")))
-            luaL_error(L, "bad argument to 'world' (wall: \"linear\" or \"curved\" expected)");
-        p.wall_curved = !strcmp(v, "curved");
-    }
-    lua_pop(L, 1);
-    t = lua_getfield(L, 1, "solver");
-    if (t != LUA_TNIL) {
-        const char *v = lua_tostring(L, -1);
-        if (t != LUA_TSTRING || (strcmp(v, "amg") && strcmp(v, "jacobi")))
-            luaL_error(L, "bad argument to 'world' (solver: \"amg\" or \"jacobi\" expected)");
-        p.solver = strcmp(v, "amg") ? SPH_SOLVER_JACOBI : SPH_SOLVER_AMG;
-    }
-    lua_pop(L, 1);
+    p.viscosity = opt_choice(L, "viscosity", "implicit", "explicit", p.viscosity == SPH_VISC_EXPLICIT)
+                      ? SPH_VISC_EXPLICIT : SPH_VISC_IMPLICIT;
+    p.density_gmres = opt_choice(L, "density_correction", "passes", "gmres", p.density_gmres);
+    p.pressure_gradient = opt_choice(L, "pressure_gradient", "symmetric", "difference",
+                                     p.pressure_gradient == SPH_GRAD_DIFFERENCE)
+                              ? SPH_GRAD_DIFFERENCE : SPH_GRAD_SYMMETRIC;
+    p.wall_curved = opt_choice(L, "wall", "linear", "curved", p.wall_curved);
+    p.solver = opt_choice(L, "solver", "amg", "jacobi", p.solver == SPH_SOLVER_JACOBI) ? SPH_SOLVER_JACOBI
+                                                                                       : SPH_SOLVER_AMG;
     t = lua_getfield(L, 1, "periodic");
     if (t == LUA_TTABLE) {
         axis_range(L, lua_gettop(L), "world", "periodic", "x", &p.periodic[0], &p.period_lo[0], &p.period_hi[0]);
