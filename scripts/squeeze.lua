@@ -4,7 +4,10 @@
 -- Parameters (paper's scaling, H = U = mu = 1): mode (velocity | load), Re, Bn, M, dx,
 -- t_end, F (load on the whole sample per unit depth, in units of mu U: the paper's
 -- F* = F Bn; negative compresses), V (plate speed), every (output interval), h_stop (end
--- the run when the gap is thinner), viscosity, shifting, threads, out (folder).
+-- the run when the gap is thinner), viscosity, shifting, threads, out (folder); width and
+-- height (the half sample's, default 0.5 and 1: a film started thin is width=1.6
+-- height=0.2), and the engine options density_correction, pressure_gradient, wall (the
+-- thin-film options: density_correction=gmres pressure_gradient=difference; README).
 -- Writes out/series.csv: t, h, plate velocity, plate force, solver iterations, max
 -- density error, and the lubrication reference (Newtonian: mu V / h^6 or h(t) under load).
 -- frames=N (default 0): N yield-state frames evenly over the run into out/frames/f_0001.png
@@ -21,16 +24,21 @@ local t_end, every = o.t_end or 0.5, o.every or 0.005
 local out = o.out or "out/squeeze"
 local h_stop = o.h_stop or 0.05
 
-local world_opts = { threads = o.threads, viscosity = o.viscosity, shifting = o.shifting }
+local world_opts = { threads = o.threads, viscosity = o.viscosity, shifting = o.shifting,
+                     density_correction = o.density_correction, pressure_gradient = o.pressure_gradient, wall = o.wall }
+local width, height = o.width or 0.5, o.height or 1
+local area = 2 * width * height -- the whole sample's, per unit depth
 local w, top, bottom = squeeze.build{ dx = dx, Re = Re, Bn = Bn, M = M, mode = mode, F = o.F or -10,
-                              V = o.V or 1, h_min = o.h_min or 0.25, world = world_opts }
+                              V = o.V or 1, h_min = o.h_min or math.min(0.25, 0.8 * height), width = width,
+                              height = height, world = world_opts }
 
 os.execute("mkdir -p '" .. out .. "'")
 local series = assert(io.open(out .. "/series.csv", "w"))
 series:write("t,h,velocity,force,solver_iterations,max_density_error,reference\n")
 local function ref(h, t)
   if Bn > 0 then return 0 / 0 end
-  if mode == "velocity" then return squeeze.newtonian_force(h, o.V or 1) end
+  if mode == "velocity" then return squeeze.newtonian_force(h, o.V or 1) * area ^ 3 end
+  if area ~= 1 then return 0 / 0 end -- the h(t) law below is for the unit sample
   return squeeze.newtonian_height(t, -(o.F or -10))
 end
 -- frames: N renders evenly over [0, t_end], at the first output at or after each time
