@@ -276,9 +276,38 @@ static int w_fill(lua_State *L) {
     return 1;
 }
 
+/* The handle of plate k (0-based) of the world at idx 1, made once and kept in the world's
+ * uservalue (laws get it as their second argument). */
+static void push_plate(lua_State *L, int k) {
+    char key[32];
+    snprintf(key, sizeof key, "plate%d", k);
+    lua_getiuservalue(L, 1, 1);
+    if (lua_getfield(L, -1, key) != LUA_TNIL) {
+        lua_remove(L, -2);
+        return;
+    }
+    lua_pop(L, 1);
+    lplate *lp = lua_newuserdatauv(L, sizeof *lp, 1);
+    lp->index = k;
+    luaL_setmetatable(L, PLATE);
+    lua_pushvalue(L, 1); /* keep the world alive while the plate handle lives */
+    lua_setiuservalue(L, -2, 1);
+    lua_pushvalue(L, -1);
+    lua_setfield(L, -3, key);
+    lua_remove(L, -2);
+}
+
 static int w_plate(lua_State *L) {
     lworld *lw = check_world(L, 1);
     static const char *const keys[] = {"rect", "axis", "mass", "slide", 0};
+    if (lua_isinteger(L, 2)) { /* w:plate(k): the k-th plate made (after sph.load too) */
+        lua_Integer k = lua_tointeger(L, 2);
+        if (k < 1 || k > sph_world_nplates(lw->w))
+            return luaL_error(L, "bad argument to 'plate' (no plate %d: the world has %d)", (int)k,
+                              sph_world_nplates(lw->w));
+        push_plate(L, (int)k - 1);
+        return 1;
+    }
     luaL_checktype(L, 2, LUA_TTABLE);
     sph_lua_opt_only(L, 2, "plate", keys);
     double slide[2] = {0, 0};
@@ -312,18 +341,31 @@ static int w_plate(lua_State *L) {
     if (k < 0) return engine_error(L, lw->w);
     if (mass > 0) sph_plate_set_mass(lw->w, k, mass);
     sph_plate_set_slide(lw->w, k, slide[0], slide[1]);
-    lplate *lp = lua_newuserdatauv(L, sizeof *lp, 1);
-    lp->index = k;
-    luaL_setmetatable(L, PLATE);
-    lua_pushvalue(L, 1); /* keep the world alive while the plate handle lives */
+    push_plate(L, k);
+    return 1;
+}
+
+/* w:save(file): the state for sph.load. A plate law given as a function is not saved (the
+ * plate keeps its last velocity or load): set it again on w:plate(k) after loading. */
+static int w_save(lua_State *L) {
+    lworld *lw = check_world(L, 1);
+    const char *file = luaL_checkstring(L, 2);
+    if (sph_world_save(lw->w, file)) return engine_error(L, lw->w);
+    lua_settop(L, 1);
+    return 1;
+}
+
+/* sph.load(file): a world from w:save's file. */
+static int l_load(lua_State *L) {
+    const char *file = luaL_checkstring(L, 1);
+    lworld *lw = lua_newuserdatauv(L, sizeof *lw, 1);
+    lw->w = 0;
+    luaL_setmetatable(L, WORLD);
+    lua_newtable(L);
     lua_setiuservalue(L, -2, 1);
-    /* remember the handle, to pass it to laws */
-    char key[32];
-    snprintf(key, sizeof key, "plate%d", k);
-    lua_getiuservalue(L, 1, 1);
-    lua_pushvalue(L, -2);
-    lua_setfield(L, -2, key);
-    lua_pop(L, 1);
+    char err[512];
+    lw->w = sph_world_load(file, err, sizeof err);
+    if (!lw->w) return luaL_error(L, "sph.load: %s", err);
     return 1;
 }
 
@@ -721,9 +763,11 @@ static const luaL_Reg world_methods[] = {{"fill", w_fill},           {"plate", w
                                          {"stats", w_stats},         {"field", w_field},
                                          {"set_velocity", w_set_velocity},
                                          {"write_csv", w_write_csv}, {"write_vtk", w_write_vtk},
+                                         {"save", w_save},
                                          {"close", w_close},         {0, 0}};
 
 static const luaL_Reg funcs[] = {{"world", l_world},
+                                 {"load", l_load},
                                  {"newtonian", l_newtonian},
                                  {"bingham", l_bingham},
                                  {"herschel_bulkley", l_hb},

@@ -102,6 +102,10 @@ void sph_params_default(sph_params *p);
 /* A new empty world; NULL with a message in err on bad parameters. */
 sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen);
 void sph_world_free(sph_world *w);
+/* The state (parameters, materials, plates, clock, statistics, particles) to a file, and a
+ * new world from one (state.c): a restart on the same build; 0 / NULL with a message. */
+int sph_world_save(sph_world *w, const char *file);
+sph_world *sph_world_load(const char *file, char *err, size_t errlen);
 const char *sph_world_error(const sph_world *w);
 const sph_params *sph_world_params(const sph_world *w);
 
