@@ -768,6 +768,32 @@ static double displace(sph_world *w, const double *dx, const double *dy, const d
     return maxerr;
 }
 
+/* The density correction's solve: the pressure matrix with the right-hand side and start in
+ * w->b and w->sol, to density_solve_tol; the solution into f (ghosts synced) and the
+ * displacement -grad f / rho (symmetric form) of every fluid particle into (dx, dy). */
+static int correction_solve(sph_world *w, double *f, double *dx, double *dy) {
+    int n = w->n;
+    sph_solve_result res = sph_solver_pcg(&w->solver, &w->A, w->b, w->sol, w->par.density_solve_tol,
+                                          w->par.max_iter, w->threads);
+    if (!res.converged)
+        return sph_world_fail(w,
+                              "density correction solver did not converge at step %ld (t = %g): "
+                              "relative residual %.3g after %d iterations (tolerance %g, %d unknowns)",
+                              w->steps, w->t, res.residual, res.iterations, w->par.density_solve_tol, w->nrows);
+    w->st.solver_iterations += res.iterations;
+    w->st.solver_iterations_total += res.iterations;
+    sph_lap(w, SPH_PHASE_PRESSURE_SOLVE);
+    scatter(w, w->sol, f);
+    neg_grad_prepare(w, f, w->sa);
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+    for (int i = 0; i < n; i++) {
+        dx[i] = dy[i] = 0.0;
+        if (w->kind[i] == SPH_FLUID) neg_grad(w, w->sa, i, &dx[i], &dy[i]);
+    }
+    sph_boundary_sync(w, dx, dy, 1);
+    return 0;
+}
+
 static int density_pass(sph_world *w, int pass) {
     double gamma = w->par.density_relax, rho0 = w->par.rho0;
     int n = w->n, nrows = w->nrows;
@@ -784,26 +810,8 @@ static int density_pass(sph_world *w, int pass) {
     sph_lap(w, SPH_PHASE_CORRECTION);
     if (bmax == 0.0) return 0;
     if (w->pin >= 0) make_compatible(w, -w->m[w->pin] * gamma * (rho0 - w->rho[w->pin]) / rho0);
-    sph_solve_result res = sph_solver_pcg(&w->solver, &w->A, w->b, w->sol, w->par.density_solve_tol, w->par.max_iter, w->threads);
-    if (!res.converged)
-        return sph_world_fail(w,
-                              "density correction solver did not converge at step %ld (t = %g): "
-                              "relative residual %.3g after %d iterations (tolerance %g, %d unknowns)",
-                              w->steps, w->t, res.residual, res.iterations, w->par.density_solve_tol, nrows);
-    w->st.solver_iterations += res.iterations;
-    w->st.solver_iterations_total += res.iterations;
-    sph_lap(w, SPH_PHASE_PRESSURE_SOLVE);
-    double *f = pass ? w->dp : w->phi;
-    scatter(w, w->sol, f);
-    double *dx = w->xs, *dy = w->ys;
-    neg_grad_prepare(w, f, w->sa);
-#pragma omp parallel for schedule(static) num_threads(w->threads)
-    for (int i = 0; i < n; i++) {
-        dx[i] = dy[i] = 0.0;
-        if (w->kind[i] != SPH_FLUID) continue;
-        neg_grad(w, w->sa, i, &dx[i], &dy[i]);
-    }
-    sph_boundary_sync(w, dx, dy, 1);
+    double *f = pass ? w->dp : w->phi, *dx = w->xs, *dy = w->ys;
+    if (correction_solve(w, f, dx, dy)) return -1;
     /* The step length: the density change is linear in the displacement, d_i =
      * continuity_rate(dx, dy), so alpha = -sum e_i d_i / sum d_i^2 (clamped to [0, 1]; e
      * the density error, over interior fluid) is the one that leaves the least squared
@@ -897,28 +905,11 @@ static int density_gmres(sph_world *w) {
         }
         sph_lap(w, SPH_PHASE_CORRECTION);
         if (w->pin >= 0) make_compatible(w, w->m[w->pin] * vk[w->pin]);
-        sph_solve_result res = sph_solver_pcg(&w->solver, &w->A, w->b, w->sol, w->par.density_solve_tol,
-                                              w->par.max_iter, th);
-        if (!res.converged)
-            return sph_world_fail(w,
-                                  "density correction solver did not converge at step %ld (t = %g): "
-                                  "relative residual %.3g after %d iterations (tolerance %g, %d unknowns)",
-                                  w->steps, w->t, res.residual, res.iterations, w->par.density_solve_tol, nrows);
-        w->st.solver_iterations += res.iterations;
-        w->st.solver_iterations_total += res.iterations;
-        sph_lap(w, SPH_PHASE_PRESSURE_SOLVE);
-        scatter(w, w->sol, w->dp);
+        if (correction_solve(w, w->dp, dx, dy)) return -1;
         if (m == 0) {
 #pragma omp parallel for schedule(static) num_threads(th)
             for (int i = 0; i < nt; i++) w->phi[i] = beta * w->dp[i];
         }
-        neg_grad_prepare(w, w->dp, w->sa);
-#pragma omp parallel for schedule(static) num_threads(th)
-        for (int i = 0; i < nt; i++) {
-            dx[i] = dy[i] = 0.0;
-            if (i < n && w->kind[i] == SPH_FLUID) neg_grad(w, w->sa, i, &dx[i], &dy[i]);
-        }
-        sph_boundary_sync(w, dx, dy, 1);
         /* the next Krylov vector B v_m, orthogonalised against v_0 .. v_m */
         double *vn = V + (size_t)(m + 1) * N;
 #pragma omp parallel for schedule(static) num_threads(th)
