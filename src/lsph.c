@@ -140,6 +140,17 @@ static void axis_range(lua_State *L, int idx, const char *fname, const char *wha
     lua_pop(L, 1);
 }
 
+/* A new world handle (its engine world still to be set) on the stack; its uservalue holds
+ * [k] = law of plate k (function or nil) and the plate handles. */
+static lworld *push_world(lua_State *L) {
+    lworld *lw = lua_newuserdatauv(L, sizeof *lw, 1);
+    lw->w = 0;
+    luaL_setmetatable(L, WORLD);
+    lua_newtable(L);
+    lua_setiuservalue(L, -2, 1);
+    return lw;
+}
+
 /* world{key = first | second}: 0 for first, 1 for second, def when absent; anything else
  * is an error naming both. */
 static int opt_choice(lua_State *L, const char *key, const char *first, const char *second, int def) {
@@ -231,11 +242,7 @@ static int l_world(lua_State *L) {
         luaL_error(L, "bad argument to 'world' (symmetry: table {x = x0} expected)");
     }
     lua_pop(L, 1);
-    lworld *lw = lua_newuserdatauv(L, sizeof *lw, 1);
-    lw->w = 0;
-    luaL_setmetatable(L, WORLD);
-    lua_newtable(L); /* uservalue: [k] = law of plate k (function or nil), plates = {...} */
-    lua_setiuservalue(L, -2, 1);
+    lworld *lw = push_world(L);
     char err[256];
     lw->w = sph_world_new(&p, err, sizeof err);
     if (!lw->w) luaL_error(L, "bad argument to 'world' (%s)", err);
@@ -358,11 +365,7 @@ static int w_save(lua_State *L) {
 /* sph.load(file): a world from w:save's file. */
 static int l_load(lua_State *L) {
     const char *file = luaL_checkstring(L, 1);
-    lworld *lw = lua_newuserdatauv(L, sizeof *lw, 1);
-    lw->w = 0;
-    luaL_setmetatable(L, WORLD);
-    lua_newtable(L);
-    lua_setiuservalue(L, -2, 1);
+    lworld *lw = push_world(L);
     char err[512];
     lw->w = sph_world_load(file, err, sizeof err);
     if (!lw->w) return luaL_error(L, "sph.load: %s", err);

@@ -29,9 +29,7 @@ static void header(state_header *h) {
 }
 
 /* the per-particle doubles and ints that carry over from one step to the next */
-#define STATE_DOUBLES(w)                                                                       \
-    {w->x, w->y, w->u, w->v, w->ax, w->ay, w->p, w->rho, w->m, w->phi, w->eta, w->gd,          \
-     w->psens[0], w->psens[1], w->psens[2], w->psens[3]}
+#define STATE_DOUBLES(w) {w->x, w->y, w->u, w->v, w->ax, w->ay, w->p, w->rho, w->m, w->phi, w->eta, w->gd}
 #define STATE_INTS(w) {w->kind, w->mat, w->id}
 
 int sph_world_save(sph_world *w, const char *file) {
@@ -55,6 +53,7 @@ int sph_world_save(sph_world *w, const char *file) {
     if (n > 0) {
         double *d[] = STATE_DOUBLES(w);
         for (size_t k = 0; k < sizeof d / sizeof *d; k++) ok = ok && fwrite(d[k], sizeof(double), n, f) == n;
+        for (int k = 0; k < SPH_MAX_LOADED; k++) ok = ok && fwrite(w->psens[k], sizeof(double), n, f) == n;
         int *iv[] = STATE_INTS(w);
         for (size_t k = 0; k < sizeof iv / sizeof *iv; k++) ok = ok && fwrite(iv[k], sizeof(int), n, f) == n;
         ok = ok && fwrite(w->surf, 1, n, f) == n;
@@ -113,6 +112,7 @@ sph_world *sph_world_load(const char *file, char *err, size_t errlen) {
         size_t n = (size_t)w->n;
         double *d[] = STATE_DOUBLES(w);
         for (size_t k = 0; k < sizeof d / sizeof *d; k++) ok = ok && fread(d[k], sizeof(double), n, f) == n;
+        for (int k = 0; k < SPH_MAX_LOADED; k++) ok = ok && fread(w->psens[k], sizeof(double), n, f) == n;
         int *iv[] = STATE_INTS(w);
         for (size_t k = 0; k < sizeof iv / sizeof *iv; k++) ok = ok && fread(iv[k], sizeof(int), n, f) == n;
         ok = ok && fread(w->surf, 1, n, f) == n;

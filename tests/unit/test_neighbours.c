@@ -107,6 +107,23 @@ static void check_pressure(sph_world *w) {
     free(y);
 }
 
+/* A world of parameters p holding the unit square of material m on the dx lattice. */
+static sph_world *unit_block(const sph_params *p, const sph_material *m) {
+    char err[128];
+    sph_world *w = sph_world_new(p, err, sizeof err);
+    double r[4] = {0, 0, 1, 1};
+    sph_world_fill(w, r, m);
+    return w;
+}
+
+/* a step's neighbour build: wrap, sort, ghosts, lists */
+static void build_neighbours(sph_world *w) {
+    sph_boundary_wrap(w);
+    sph_neighbours_sort(w);
+    sph_boundary_ghosts(w);
+    sph_neighbours_build(w);
+}
+
 /* Symmetric pair forces: with no walls, pressure and viscous forces change no momentum. */
 static void check_momentum(void) {
     sph_params p;
@@ -115,11 +132,8 @@ static void check_momentum(void) {
     p.threads = 2;
     p.periodic[0] = p.periodic[1] = 1;
     p.period_hi[0] = p.period_hi[1] = 1.0;
-    char err[128];
-    sph_world *w = sph_world_new(&p, err, sizeof err);
     sph_material m = {SPH_BINGHAM, 1.0, 1.0, 100.0, 0, 0};
-    double r[4] = {0, 0, 1, 1};
-    sph_world_fill(w, r, &m);
+    sph_world *w = unit_block(&p, &m);
     uint64_t s = 7;
     for (int i = 0; i < w->n; i++) {
         w->x[i] += 0.2 * p.dx * (rnd(&s) - 0.5);
@@ -129,10 +143,7 @@ static void check_momentum(void) {
         w->p[i] = 10 * rnd(&s);
         w->rho[i] = 1.0 + 0.01 * (rnd(&s) - 0.5);
     }
-    sph_boundary_wrap(w);
-    sph_neighbours_sort(w);
-    sph_boundary_ghosts(w);
-    sph_neighbours_build(w);
+    build_neighbours(w);
     sph_viscous_rheology(w);
     double px0 = 0, py0 = 0, px1 = 0, py1 = 0, pref = 0;
     for (int i = 0; i < w->n; i++) {
@@ -172,20 +183,14 @@ static void check_difference_gradient(void) {
         p.dx = 0.05;
         p.threads = 2;
         p.pressure_gradient = form ? SPH_GRAD_DIFFERENCE : SPH_GRAD_SYMMETRIC;
-        char err[128];
-        sph_world *w = sph_world_new(&p, err, sizeof err);
         sph_material m = {SPH_NEWTONIAN, 1.0, 0, 0, 0, 0};
-        double r[4] = {0, 0, 1, 1};
-        sph_world_fill(w, r, &m);
+        sph_world *w = unit_block(&p, &m);
         uint64_t s = 99;
         for (int i = 0; i < w->n; i++) {
             w->x[i] += 0.3 * p.dx * (rnd(&s) - 0.5);
             w->y[i] += 0.3 * p.dx * (rnd(&s) - 0.5);
         }
-        sph_boundary_wrap(w);
-        sph_neighbours_sort(w);
-        sph_boundary_ghosts(w);
-        sph_neighbours_build(w);
+        build_neighbours(w);
         for (int i = 0; i < w->n + w->ng; i++) {
             w->p[i] = 1000.0 + 3.0 * w->x[i] - 5.0 * w->y[i];
             w->us[i] = w->vs[i] = 0.0;
