@@ -87,27 +87,31 @@ static inline double plate_pull(const sph_world *w, int i, int j, double cw, dou
  * 1.9 / 0.9 % too much flux (an effective slip of about 0.065 dx). The curvature is taken
  * from the momentum balance at A, eta kappa = rho (a - a_p - g) (a the last step's
  * acceleration, a_p = -grad p~ / rho the pressure predictor's), and the wall term gains
- * -c_base kappa d_B (d_A + d_B) / 2, explicit in the implicit step, for the velocity
+ * -c_base kappa d_B (d_A + d_B) / 2 (wall_coeff_curved returns c = beta c_base and that
+ * factor, f = c_base d_B (d_A + d_B) / 2), explicit in the implicit step, for the velocity
  * component tangent to the face only, where A lies over the plate's face (not at its ends:
  * a moving periodic plate's image ends took the normal component there and a Couette
  * start-up particle went through the plate), and not at the first step (no acceleration
- * yet). Returns that term's factor d_B (d_A + d_B) / (2 beta): the pair's acceleration is
- * c (u_A - u_w) - c f kappa with c = beta c_base (wall_coeff).
+ * yet): the pair's acceleration is c (u_A - u_w) - f kappa.
  * Measured with it: the 7 / 14 / 28-row channel 1.0166 / 1.0088 / 1.0068 (tests/lua/
- * test_walls.lua); the Newtonian film started thin (thin-film options) 0.1015 / 0.0963 /
- * 0.0902 / 0.0822 against lubrication at 1/30 .. 1/80 (0.1475 / 0.1217 / 0.1102 / 0.0861
- * linear); the Bingham one 1.079 / 1.031 / 0.976 x theory (1.012 / 0.997 / 0.962); the
- * default square squeeze barely moves (Newtonian V = 1 at 1/20, 1/30: 0.214, 0.217). Not
+ * test_walls.lua); the Newtonian film started thin (thin-film options) 0.1054 / 0.0938 /
+ * 0.0890 / 0.0886 against lubrication at 1/30 .. 1/80 (0.1475 / 0.1217 / 0.1102 / 0.0861
+ * linear); the Bingham one 1.083 / 1.021 / 0.976 / 0.963 x theory (1.012 / 0.997 / 0.962 /
+ * 0.954); the default square squeeze barely moves (Newtonian V = 1 at 1/20, 1/30: 0.236,
+ * 0.215 against 0.230, 0.217). Not
  * the default: the balance eta kappa = rho (a - a_p - g) is the Newtonian one (a
  * generalized Newtonian fluid's also has grad eta . grad u: the Bingham Poiseuille plug
  * came out 3.0 % low at dx = 1/40), and as the default it moved the Poiseuille start-up's
  * errors to 0.00064 / 0.0020 at 1/20, 1/40 (an accidental cancellation with the Morris
  * epsilon at 1/20) and most squeeze references (make test: 10 failures to re-centre). */
-static inline double wall_curve_factor(const sph_world *w, int i, int j, int *horizontal) {
-    double da, db, fa = 0.5 * w->dx;
+static inline double wall_coeff_curved(const sph_world *w, int i, int j, int k, double *wx, double *wy,
+                                       double *f, int *horizontal) {
+    double da, db, fa = 0.5 * w->dx; /* the face distances once: beta as sph_plate_noslip */
     *horizontal = sph_plate_wall_distances(w, i, j, &da, &db);
-    double beta = 1.0 + db / (da > fa ? da : fa);
-    return 0.5 * db * (da + db) / beta;
+    sph_plate_wall_velocity(w, j, wx, wy);
+    double cbase = w->vol[j] * 2.0 * w->eta[i] * w->nb_f[k] / w->rho[i];
+    *f = 0.5 * db * (da + db) * cbase;
+    return (1.0 + db / (da > fa ? da : fa)) * cbase;
 }
 
 /* kappa of fluid particle i (see wall_curve_factor); ax_p, ay_p the predictor's -grad p~ / rho */
@@ -241,17 +245,16 @@ static void visc_assemble(sph_world *w, double dt, int comp) {
         if (curved) wall_curvature(w, i, w->xs, w->ys, &kx, &ky);
         for (int k = km; k < k1; k++) { /* walls */
             int j = w->nb_j[k];
-            double wx, wy, c = dt * wall_coeff(w, i, j, k, &wx, &wy);
+            double wx, wy, c, f = 0.0;
+            int hz = 0;
+            if (curved) c = dt * wall_coeff_curved(w, i, j, k, &wx, &wy, &f, &hz);
+            else c = dt * wall_coeff(w, i, j, k, &wx, &wy);
             du -= c;
             dv -= c;
             ru -= c * wx;
             rv -= c * wy;
-            if (curved) { /* the tangential component only */
-                int hz;
-                double f = c * wall_curve_factor(w, i, j, &hz);
-                if (hz == 1) ru -= f * kx;
-                else if (hz == 2) rv -= f * ky;
-            }
+            if (hz == 1) ru -= dt * f * kx; /* the tangential component only */
+            else if (hz == 2) rv -= dt * f * ky;
         }
         int d = A->start[r];
         A->col[d] = r;
@@ -371,8 +374,12 @@ int sph_viscous_implicit(sph_world *w, double dt) {
             int j = w->nb_j[k];
             if (w->plates[w->kind[j]].axis < 0) continue;
             int hz = 0;
-            double wx, wy, cw = wall_coeff(w, i, j, k, &wx, &wy), f = curved ? wall_curve_factor(w, i, j, &hz) : 0.0;
-            fplate[w->kind[j]] += plate_pull(w, i, j, cw, w->us[i] - (hz == 1 ? f * kx : 0.0), w->vs[i] - (hz == 2 ? f * ky : 0.0), wx, wy);
+            double wx, wy, cw, f = 0.0;
+            if (curved) cw = wall_coeff_curved(w, i, j, k, &wx, &wy, &f, &hz);
+            else cw = wall_coeff(w, i, j, k, &wx, &wy);
+            double g = cw != 0.0 ? f / cw : 0.0; /* c (u - g kappa - w) = c (u - w) - f kappa */
+            fplate[w->kind[j]] += plate_pull(w, i, j, cw, w->us[i] - (hz == 1 ? g * kx : 0.0),
+                                             w->vs[i] - (hz == 2 ? g * ky : 0.0), wx, wy);
         }
         if (bdt > 0) {
             w->us[i] -= bdt * w->xs[i];
