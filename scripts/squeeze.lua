@@ -7,7 +7,8 @@
 -- the run when the gap is thinner), viscosity, shifting, threads, out (folder); width and
 -- height (the half sample's, default 0.5 and 1: a film started thin is width=1.6
 -- height=0.2), and the engine options density_correction, pressure_gradient, wall (the
--- thin-film options: density_correction=gmres pressure_gradient=difference; README).
+-- thin-film options: density_correction=gmres pressure_gradient=difference; README) and
+-- projection_passes (README, Validation).
 -- Writes out/series.csv: t, h, plate velocity, plate force, solver iterations, max
 -- density error, and the lubrication reference (Newtonian: mu V / h^6 or h(t) under load).
 -- frames=N (default 0): N yield-state frames evenly over the run into out/frames/f_0001.png
@@ -25,7 +26,8 @@ local out = o.out or "out/squeeze"
 local h_stop = o.h_stop or 0.05
 
 local world_opts = { threads = o.threads, viscosity = o.viscosity, shifting = o.shifting,
-                     density_correction = o.density_correction, pressure_gradient = o.pressure_gradient, wall = o.wall }
+                     density_correction = o.density_correction, pressure_gradient = o.pressure_gradient, wall = o.wall,
+                     projection_passes = o.projection_passes }
 local width, height = o.width or 0.5, o.height or 1
 local area = 2 * width * height -- the whole sample's, per unit depth
 local w, top, bottom = squeeze.build{ dx = dx, Re = Re, Bn = Bn, M = M, mode = mode, F = o.F or -10,

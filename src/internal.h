@@ -177,6 +177,7 @@ struct sph_world {
     double *sa, *sb;           /* scratch per particle for the sweeps (f / rho^2,
                                   the source velocity of the pressure system)        */
     double *cx, *cy;           /* positions in cell order: cx[k] = x[cell_items[k]]  */
+    double *ru, *rv;           /* a projection pass's velocity field (pressure.c)    */
     int *kind, *mat, *id;      /* SPH_FLUID or plate index; material; stable id     */
     int *src;                  /* ghosts: the real particle they image; reals: self */
     signed char *gsx, *gsy;    /* ghosts: sign applied to u, v (mirror: -1)         */
@@ -224,6 +225,7 @@ struct sph_world {
     sph_solver solver;
     double *b, *sol;           /* right-hand side and solution, per row              */
     double *bk[SPH_MAX_LOADED], *solk[SPH_MAX_LOADED]; /* loaded plates' sensitivities */
+    double *rq;                /* a projection pass's solution, per row (pressure.c)  */
     int rows_cap;
     int nrows;
     int pin;                   /* pinned pressure unknown (no free surface) or -1    */

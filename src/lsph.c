@@ -169,7 +169,7 @@ static int l_world(lua_State *L) {
     static const char *const keys[] = {"dx", "h", "rho", "gravity", "viscosity", "shifting",
                                        "cfl", "cvisc", "cforce", "dt_max", "periodic", "symmetry",
                                        "threads", "tol", "max_iter", "surface", "density_relax",
-                                       "density_tol", "density_passes", "density_limit", "density_diffusion", "density_solve_tol", "pressure_predictor", "solver", "density_correction", "pressure_gradient", "wall", 0};
+                                       "density_tol", "density_passes", "density_limit", "density_diffusion", "density_solve_tol", "pressure_predictor", "solver", "density_correction", "pressure_gradient", "wall", "projection_passes", 0};
     luaL_checktype(L, 1, LUA_TTABLE);
     sph_lua_opt_only(L, 1, "world", keys);
     sph_params p;
@@ -190,6 +190,7 @@ static int l_world(lua_State *L) {
     p.density_relax = sph_lua_opt_number(L, 1, "world", "density_relax", p.density_relax);
     p.density_tol = sph_lua_opt_number(L, 1, "world", "density_tol", p.density_tol);
     p.density_passes = (int)sph_lua_opt_number(L, 1, "world", "density_passes", p.density_passes);
+    p.projection_passes = (int)sph_lua_opt_number(L, 1, "world", "projection_passes", p.projection_passes);
     p.density_limit = sph_lua_opt_number(L, 1, "world", "density_limit", p.density_limit);
     p.density_diffusion = sph_lua_opt_number(L, 1, "world", "density_diffusion", p.density_diffusion);
     p.density_solve_tol = sph_lua_opt_number(L, 1, "world", "density_solve_tol", p.density_solve_tol);

@@ -90,6 +90,9 @@ typedef struct sph_params {
     int pressure_gradient; /* the projection's gradient: SPH_GRAD_SYMMETRIC (default,
                               momentum-conserving) or SPH_GRAD_DIFFERENCE (first-order
                               consistent: renormalised sum V_j (p_j - p_i) grad W)    */
+    int projection_passes; /* in [0, 10]: extra projections of the residual divergence the
+                              compact Laplacian leaves (D G != L), each one more solve of
+                              the pressure system per step (pressure.c); default 0    */
 } sph_params;
 
 enum { SPH_GRAD_SYMMETRIC = 0, SPH_GRAD_DIFFERENCE = 1 };

@@ -34,6 +34,7 @@ void sph_params_default(sph_params *p) {
     p->density_gmres = 0;
     p->wall_curved = 0;
     p->pressure_gradient = SPH_GRAD_SYMMETRIC;
+    p->projection_passes = 0;
 }
 
 int sph_world_fail(sph_world *w, const char *fmt, ...) {
@@ -56,7 +57,8 @@ static const char *check_params(const sph_params *p) {
         "shifting must be >= 0", "density_tol must be in [0, 1)", "density_passes must be in [1, 10]",
         "solver must be SPH_SOLVER_AMG or SPH_SOLVER_JACOBI", "density_limit must be in [0, 1) (0: none)", "density_diffusion must be in [0, 0.25]", "density_solve_tol must be in (0, 1)",
         "pressure_predictor must be in [0, 1]", "density_gmres must be 0 or 1",
-        "pressure_gradient must be SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE", "wall_curved must be 0 or 1"};
+        "pressure_gradient must be SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE", "wall_curved must be 0 or 1",
+        "projection_passes must be in [0, 10]"};
     if (!(p->dx > 0 && isfinite(p->dx))) return bad[0];
     if (!(p->h >= 0 && isfinite(p->h))) return bad[1];
     if (!(p->rho0 > 0 && isfinite(p->rho0))) return bad[2];
@@ -80,6 +82,7 @@ static const char *check_params(const sph_params *p) {
     if (p->density_gmres != 0 && p->density_gmres != 1) return bad[18];
     if (p->pressure_gradient != SPH_GRAD_SYMMETRIC && p->pressure_gradient != SPH_GRAD_DIFFERENCE) return bad[19];
     if (p->wall_curved != 0 && p->wall_curved != 1) return bad[20];
+    if (!(p->projection_passes >= 0 && p->projection_passes <= 10)) return bad[21];
     return 0;
 }
 
@@ -112,7 +115,7 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
     {&w->x,   &w->y,   &w->u,   &w->v,   &w->us,  &w->vs,  &w->ax,       &w->ay,       \
      &w->p,   &w->rho, &w->m,   &w->eta, &w->gd,  &w->divr, &w->xs, &w->ys, &w->lxx,       \
      &w->lxy, &w->lyy, &w->gux, &w->guy, &w->gvx, &w->gvy, &w->phi, &w->psens[0], &w->psens[1], \
-     &w->psens[2], &w->psens[3], &w->dp, &w->vol, &w->sa, &w->sb, &w->cx, &w->cy}
+     &w->psens[2], &w->psens[3], &w->dp, &w->vol, &w->sa, &w->sb, &w->cx, &w->cy, &w->ru, &w->rv}
 #define PARTICLE_INTS(w)                                                                    \
     {&w->kind, &w->mat, &w->id, &w->src, &w->row, &w->perm, &w->iscratch, &w->cell_of,     \
      &w->nb_count, &w->nb_mid}
@@ -124,7 +127,7 @@ void sph_world_free(sph_world *w) {
     int **ip[] = PARTICLE_INTS(w);
     for (size_t k = 0; k < sizeof ip / sizeof *ip; k++) free(*ip[k]);
     double **o[] = {&w->nb_gx, &w->nb_gy, &w->nb_f, &w->b, &w->sol, &w->bk[0], &w->bk[1], &w->bk[2],
-                    &w->bk[3], &w->solk[0], &w->solk[1], &w->solk[2], &w->solk[3], &w->vb, &w->vsol, &w->vval, &w->vdiag, &w->vrhs};
+                    &w->bk[3], &w->solk[0], &w->solk[1], &w->solk[2], &w->solk[3], &w->rq, &w->vb, &w->vsol, &w->vval, &w->vdiag, &w->vrhs};
     for (size_t k = 0; k < sizeof o / sizeof *o; k++) free(*o[k]);
     int **oi[] = {&w->cell_start, &w->cell_items, &w->nb_start, &w->nb_j, &w->row_of, &w->vrow_of};
     for (size_t k = 0; k < sizeof oi / sizeof *oi; k++) free(*oi[k]);

@@ -162,7 +162,8 @@ local function load_case(name, opts)
     ro = ro or {}
     local h_end, h_win, F = ro.h_end or opts.h_end, ro.h_win or opts.h_win, opts.F
     local w, top = squeeze.build{ dx = dx, Re = opts.Re, Bn = 0, mode = "load", F = -F,
-                                  h_min = h_end, world = world_opts(ro) }
+                                  h_min = h_end, width = opts.width, height = opts.height,
+                                  world = world_opts(ro, opts.world) }
     local A = area(w, dx)
     local n, st, sy, stt, sty, sr = 0, 0, 0, 0, 0, 0
     local trace = open_trace(ro)
@@ -264,11 +265,26 @@ M.cases = {
   {
     name = "Newtonian squeeze F = 20",
     error_name = "relative error of the slope of h^-5 against t (lubrication: 5 F / mu) over h in [0.35, 0.45], Re = 1",
-    -- 1/40 and 1/60 fail: a fluid particle goes through the upper plate near the sample's
-    -- edge (t = 0.51 and 0.32); 1/25 gives a third resolution that runs
+    -- (sessions 5-6: 1/40 and 1/60 failed, a fluid particle through the upper plate near the
+    -- sample's edge, so 1/25 was added; since session 7 both run: 1/60 reaches h = 0.35 with
+    -- the density error under 0.9 %, measured in session 9)
     resolutions = { 1 / 20, 1 / 25, 1 / 30, 1 / 40 },
     quick = { 1 / 20, 1 / 30 },
     run = load_case("Newtonian squeeze F = 20", { Re = 1, F = 20, h_end = 0.35, h_win = 0.45 }),
+  },
+  {
+    -- the film started thin under a constant load F = 400 (the plate closes at 0.05-0.1:
+    -- nearly Stokes flow). Measured (session 9, one thread): 0.3598 / 0.2843 / 0.2205 /
+    -- 0.2060 at 1/30 .. 1/80: the plate closes 1.36-1.21 x faster than lubrication. Part of
+    -- it is a time-step error (0.253 at 1/30 with dt_max = 1e-4): the projection's residual
+    -- divergence next to the plates, which the option projection_passes = 1 removes (0.2410
+    -- / 0.2118 / 0.1911 / 0.1551; pressure.c says why it is not the default).
+    name = "Newtonian squeeze under load, thin film",
+    error_name = "relative error of the slope of h^-5 against t (lubrication: 5 F / (mu A^3)) over h in [0.17, 0.18] (a/h 9.9-11), film started thin (h0 = 0.2, half-width 1.6), F = 400, Re = 1, density_correction = gmres, pressure_gradient = difference",
+    resolutions = { 1 / 30, 1 / 40, 1 / 60, 1 / 80 },
+    quick = { 1 / 30, 1 / 40 },
+    run = load_case("Newtonian squeeze under load, thin film", { Re = 1, F = 400, h_end = 0.17, h_win = 0.18, width = 1.6, height = 0.2,
+                                                               world = { density_correction = "gmres", pressure_gradient = "difference" } }),
   },
   {
     name = "Bingham squeeze Bn = 100 V = 1",

@@ -128,6 +128,30 @@ T.case("Newtonian squeeze under a constant load against lubrication", function()
   T.close(order, 0.52, 0.6, "Newtonian squeeze F = 20: observed order within 0.6 of 0.52")
 end)
 
+T.case("Newtonian squeeze under a constant load in the thin-film regime against lubrication", function()
+  local rs, order = study(cases["Newtonian squeeze under load, thin film"])
+  -- the film started thin (h0 = 0.2, half-width 1.6, thin-film options) under F = 400 (the
+  -- plate closes at 0.05-0.1, Re = 1: nearly Stokes flow); error |slope of h^-5 / (5 F /
+  -- (mu A^3)) - 1| over h in [0.17, 0.18]. Measured (session 9, one thread): 0.3598 /
+  -- 0.2843 (order 0.82) with -O2, 0.3547 / 0.2881 (0.72) with -O1; finer 0.2205 / 0.2060
+  -- at 1/60, 1/80 (-O2). The plate closes 1.2-1.36 x faster than lubrication; part of it
+  -- is a time-step error (0.253 at 1/30 with dt_max = 1e-4) that projection_passes = 1
+  -- removes (0.241, either dt; pressure.c says why it is not the default). The peak density
+  -- error reaches 1.3 % (-O2, 1/30) and 2.7 % (-O1, 1/40) in this film: not asserted here.
+  -- Tolerances 0.015 on each error (the builds differ by 0.005 and 0.004), 0.5 on the order.
+  T.close(rs[1].error, 0.357, 0.015, "Newtonian thin film under load, dx = 1/30: error within 0.015 of 0.357")
+  T.close(rs[2].error, 0.286, 0.015, "Newtonian thin film under load, dx = 1/40: error within 0.015 of 0.286")
+  T.close(order, 0.77, 0.5, "Newtonian thin film under load: observed order within 0.5 of 0.77")
+  T.below(rs[2].error, rs[1].error, "Newtonian thin film under load: the error falls from dx = 1/30 to 1/40")
+  -- the option projection_passes = 1 (pressure.c): measured 0.2410 (-O2) and 0.2402 (-O1)
+  -- at 1/30, and the same at dt_max = 1e-4 (0.252): tolerance 0.015.
+  local c = cases["Newtonian squeeze under load, thin film"]
+  local r = c.run(1 / 30, { threads = threads, world = { projection_passes = 1 } })
+  print(string.format("# %s, dx = 1/30, projection_passes = 1: error %.4f, %d steps, %.1f pressure-type iterations a step",
+    c.name, r.error, r.steps, r.p_iter))
+  T.close(r.error, 0.241, 0.015, "Newtonian thin film under load, dx = 1/30, projection_passes = 1: error within 0.015 of 0.241")
+end)
+
 T.case("Bingham squeeze, Bn = 100, at constant velocity against thin-film Bingham theory", function()
   -- dx = 1/20 only here (CPU budget); dx = 1/30 and 1/40 are in make bench
   local rs = study(cases["Bingham squeeze Bn = 100 V = 1"], { 1 / 20 })

@@ -81,7 +81,10 @@ static void check_pressure(sph_world *w) {
     }
     for (int i = 0; i < w->n; i++) w->surf[i] = w->kind[i] == SPH_FLUID && w->divr[i] < 1.5;
     for (int g = w->n; g < w->n + w->ng; g++) w->surf[g] = w->surf[w->src[g]];
+    int passes = w->par.projection_passes;
+    w->par.projection_passes = 0; /* the first solve's b and sol, not a projection pass's */
     int rc = sph_pressure_solve(w, 1e-3);
+    w->par.projection_passes = passes;
     CHECK(rc == 0, "pressure solve converges on a random field", "%s", w->err);
     sph_csr *A = &w->A;
     double asym = 0.0, amax = 0.0;
