@@ -406,6 +406,15 @@ static double field_div(const sph_world *w, const double *ru, const double *rv, 
  * side kernel-averaged kept the film's gain (0.2411) but 1/40 still failed (dt collapsed at
  * h = 0.358). Passes on the flow
  * alone, not on the sensitivities, leave the plate equations inconsistent (loaded film 0.84).
+ * With the difference-form gradient (pressure_gradient = difference) the pass is stable
+ * where the symmetric form's is not: F = 20 at 1/40 peak density error 0.79 % (11.5 %
+ * with the difference form and no pass), at 1/60 0.79 %, the V = 1 square (Re = 0.1) at
+ * 1/60 0.79 %; the stability suite with the difference form and one pass: 5 of 6 (Bn = 100
+ * load ends at h = 0.660, the paper's case at h(2) = 0.737; the thin film reaches h = 0.15
+ * at 35 %). The squeezes (dx = 1/20) with that pair against the defaults: Newtonian V = 1
+ * 0.241 (0.229), F = 20 0.479 (0.474), Bingham V = 1 0.135 (0.150), Bingham F = 400 0.482
+ * (0.533) but with a 3.2 % peak density error: no clear gain over the defaults. With the
+ * thin-film options (gmres, difference) it is the loaded film's 0.241 above.
  * Tried and not kept: the incremental projection (the viscous step
  * keeps -grad p~, the projection solves for p - p~): the film's flux came to 0.98, but on
  * the square sample (Newtonian V = 1, Re = 0.1, dx = 1/20) the force went 0.71 / 0.68 /
