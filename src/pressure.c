@@ -414,7 +414,11 @@ static double field_div(const sph_world *w, const double *ru, const double *rv, 
  * at 35 %). The squeezes (dx = 1/20) with that pair against the defaults: Newtonian V = 1
  * 0.241 (0.229), F = 20 0.479 (0.474), Bingham V = 1 0.135 (0.150), Bingham F = 400 0.482
  * (0.533) but with a 3.2 % peak density error: no clear gain over the defaults. With the
- * thin-film options (gmres, difference) it is the loaded film's 0.241 above.
+ * thin-film options (gmres, difference) it is the loaded film's 0.241 above. The pass with
+ * a gradient of its own in the difference form while the projection keeps the symmetric
+ * one (the passes' pressure kept apart and applied by its own gradient): F = 20 at 1/40
+ * peak 11.8 %, the V = 1 square at 1/60 54.9 %: the symmetric projection's residual is
+ * what the pass cannot take out, whatever the pass's gradient.
  * Tried and not kept: the incremental projection (the viscous step
  * keeps -grad p~, the projection solves for p - p~): the film's flux came to 0.98, but on
  * the square sample (Newtonian V = 1, Re = 0.1, dx = 1/20) the force went 0.71 / 0.68 /
