@@ -157,7 +157,7 @@ struct sph_world {
     sph_params par;
     double h, dx, eps2, mass0;
     int threads;
-    char err[512];
+    char err[1024];
 
     /* particles: real ones in [0, n), ghosts (mirror / periodic images) in [n, n + ng) */
     int n, ng, cap;
@@ -290,6 +290,9 @@ void sph_shifting_apply(sph_world *w, double dt);
 
 /* timestep.c */
 double sph_timestep_compute(sph_world *w);
+/* What sets the time step now, for an error message: the fastest and the most accelerated
+ * fluid particles and the largest density error, with ids and positions (into buf). */
+void sph_timestep_explain(const sph_world *w, char *buf, size_t len);
 
 /* solver.c */
 /* realloc *p to count elements of elem bytes (at least one); -1 when out of memory, *p kept. */

@@ -7,6 +7,7 @@
 #include "internal.h"
 
 #include <math.h>
+#include <stdio.h>
 
 double sph_timestep_compute(sph_world *w) {
     const sph_params *P = &w->par;
@@ -58,4 +59,28 @@ double sph_timestep_compute(sph_world *w) {
     if (w->dt_prev > 0) dt = fmin(dt, 1.25 * w->dt_prev);
     if (!isfinite(dt)) dt = P->cfl * h; /* nothing moves: a step as if |u| = 1 */
     return dt;
+}
+
+void sph_timestep_explain(const sph_world *w, char *buf, size_t len) {
+    int iu = -1, ia = -1, ir = -1;
+    double umax = -1.0, amax = -1.0, emax = -1.0, rho0 = w->par.rho0;
+    for (int i = 0; i < w->n; i++) {
+        if (w->kind[i] != SPH_FLUID) continue;
+        double s = hypot(w->u[i], w->v[i]), a = hypot(w->ax[i], w->ay[i]), e = fabs(w->rho[i] / rho0 - 1.0);
+        if (!(s <= umax)) umax = s, iu = i; /* NaN wins: it is the particle to name */
+        if (!(a <= amax)) amax = a, ia = i;
+        if (!(e <= emax)) emax = e, ir = i;
+    }
+    if (iu < 0) {
+        snprintf(buf, len, "no fluid particle");
+        return;
+    }
+    int k = snprintf(buf, len,
+                     "fastest fluid particle %d at (%.6g, %.6g), speed %.3g; largest acceleration %.3g "
+                     "(particle %d at (%.6g, %.6g)); largest density error %.3g %% (particle %d at "
+                     "(%.6g, %.6g)%s)",
+                     w->id[iu], w->x[iu], w->y[iu], umax, amax, w->id[ia], w->x[ia], w->y[ia], 100.0 * emax,
+                     w->id[ir], w->x[ir], w->y[ir], w->surf[ir] ? ", free surface" : "");
+    double g = hypot(w->par.gravity[0], w->par.gravity[1]);
+    if (g > amax && k > 0 && (size_t)k < len) snprintf(buf + k, len - (size_t)k, "; gravity %.3g", g);
 }

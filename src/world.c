@@ -368,9 +368,12 @@ int sph_world_step(sph_world *w, double dt) {
     prepare(w);
     if (w->nfluid == 0) return sph_world_fail(w, "the world has no fluid: call fill first");
     if (!(dt > 0)) dt = sph_timestep_compute(w);
-    if (!isfinite(dt) || dt < w->par.dt_min)
-        return sph_world_fail(w, "time step %g below the minimum %g at step %ld (t = %g)", dt,
-                              w->par.dt_min, w->steps, w->t);
+    if (!isfinite(dt) || dt < w->par.dt_min) {
+        char why[512];
+        sph_timestep_explain(w, why, sizeof why);
+        return sph_world_fail(w, "time step %g below the minimum %g at step %ld (t = %g): %s", dt,
+                              w->par.dt_min, w->steps, w->t, why);
+    }
 
     /* plates: the velocity each holds during this step */
     double vold[SPH_MAX_PLATES];

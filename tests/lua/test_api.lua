@@ -257,4 +257,14 @@ T.case("errors in the engine", function()
   T.checkerror("no fluid", "stepping an empty world", w.step, w)
 end)
 
+T.case("a time step below the minimum says what set it", function()
+  -- gravity 1e30 makes the force limit 0.25 sqrt(h / g) ~ 3e-18, below dt_min = 1e-12 h
+  local w = sph.world{ dx = 0.05, gravity = { 0, -1e30 }, threads = 1 }
+  w:fill{ rect = { 0, 0, 0.5, 0.5 }, material = sph.newtonian{ mu = 1 } }
+  w:plate{ rect = { -0.2, -0.2, 0.7, 0 } }
+  T.checkerror("below the minimum", "dt collapse is an error", w.step, w)
+  T.checkerror("largest density error", "dt collapse names the density error", w.step, w)
+  T.checkerror("gravity 1e+30", "dt collapse names gravity when it sets the force limit", w.step, w)
+end)
+
 T.done()
