@@ -3,8 +3,10 @@
 --   build/sph scripts/squeeze.lua mode=load F=-10 Re=1 Bn=5 t_end=2 out=out/load
 -- Parameters (paper's scaling, H = U = mu = 1): mode (velocity | load), Re, Bn, M, dx,
 -- t_end, F (load on the whole sample per unit depth, in units of mu U: the paper's
--- F* = F Bn; negative compresses), V (plate speed), every (output interval), h_stop (end
--- the run when the gap is thinner), viscosity, shifting, threads, out (folder); width and
+-- F* = F Bn; negative compresses), V (plate speed), every (output interval), h_min (the
+-- thinnest gap the plates are sized for: the sample spread to it still lies on them;
+-- default min(0.25, 0.8 height)), h_stop (end the run at an output time when the gap is
+-- thinner; default h_min), viscosity, shifting, threads, out (folder); width and
 -- height (the half sample's, default 0.5 and 1: a film started thin is width=1.6
 -- height=0.2), and the engine options density_correction, pressure_gradient, wall (the
 -- thin-film options: density_correction=gmres pressure_gradient=difference; README) and
@@ -23,15 +25,18 @@ if mode ~= "velocity" and mode ~= "load" then error("mode must be velocity or lo
 local Re, Bn, M, dx = o.Re or 10, o.Bn or 0.5, o.M or 800, o.dx or 1 / 40
 local t_end, every = o.t_end or 0.5, o.every or 0.005
 local out = o.out or "out/squeeze"
-local h_stop = o.h_stop or 0.05
 
 local world_opts = { threads = o.threads, viscosity = o.viscosity, shifting = o.shifting,
                      density_correction = o.density_correction, pressure_gradient = o.pressure_gradient, wall = o.wall,
                      projection_passes = o.projection_passes }
 local width, height = o.width or 0.5, o.height or 1
+-- the plates are sized for the sample spread to the gap h_min; the run ends at h_stop, by
+-- default h_min (thinner, the sample would flow off the plates' ends)
+local h_min = o.h_min or math.min(0.25, 0.8 * height)
+local h_stop = o.h_stop or h_min
 local area = 2 * width * height -- the whole sample's, per unit depth
 local w, top, bottom = squeeze.build{ dx = dx, Re = Re, Bn = Bn, M = M, mode = mode, F = o.F or -10,
-                              V = o.V or 1, h_min = o.h_min or math.min(0.25, 0.8 * height), width = width,
+                              V = o.V or 1, h_min = h_min, width = width,
                               height = height, world = world_opts }
 
 os.execute("mkdir -p '" .. out .. "'")
