@@ -212,18 +212,20 @@ static inline void src_velocity(const sph_world *w, int j, double *vx, double *v
     sph_plate_rigid_velocity(w, j, vx, vy);
 }
 
-/* sum_j m_j (u*_i - u*_j) . L grad W_ij, the source's divergence at particle i. */
-static double source_div(const sph_world *w, int i) {
-    double wi_x, wi_y, div = 0.0;
-    src_velocity(w, i, &wi_x, &wi_y);
+/* sum_j m_j (u_i - u_j) . L grad W_ij for the field (ru, rv) (ghosts synced): the source's
+ * divergence (renormalised on fluid particles), and a fluid particle's continuity rate */
+static double field_div(const sph_world *w, const double *ru, const double *rv, int i) {
     int fl = w->kind[i] == SPH_FLUID;
     double lxx = fl ? w->lxx[i] : 1.0, lxy = fl ? w->lxy[i] : 0.0, lyy = fl ? w->lyy[i] : 1.0;
-    for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
-        int j = w->nb_j[k];
-        double wj_x, wj_y;
-        src_velocity(w, j, &wj_x, &wj_y);
-        double gx = lxx * w->nb_gx[k] + lxy * w->nb_gy[k], gy = lxy * w->nb_gx[k] + lyy * w->nb_gy[k];
-        div += w->m[j] * ((wi_x - wj_x) * gx + (wi_y - wj_y) * gy);
+    double div = 0.0, ui = ru[i], vi = rv[i];
+    const int *nj = w->nb_j;
+    const double *m = w->m, *ngx = w->nb_gx, *ngy = w->nb_gy;
+    int k0 = w->nb_start[i], k1 = w->nb_start[i + 1];
+#pragma omp simd reduction(+ : div)
+    for (int k = k0; k < k1; k++) {
+        int j = nj[k];
+        double gx = lxx * ngx[k] + lxy * ngy[k], gy = lxy * ngx[k] + lyy * ngy[k];
+        div += m[j] * ((ui - ru[j]) * gx + (vi - rv[j]) * gy);
     }
     return div;
 }
@@ -285,35 +287,44 @@ static void scatter(sph_world *w, const double *sol, double *p) {
     sph_boundary_sync(w, p, 0, 0);
 }
 
-/* Small dense solve (Gaussian elimination with partial pivoting), n <= SPH_MAX_LOADED. */
-static int dense_solve(int n, double a[SPH_MAX_LOADED][SPH_MAX_LOADED], double *x) {
+/* Small dense solve A x = b (Gaussian elimination with partial pivoting): A is n x n with
+ * rows lda apart, x holds b on entry. Returns the number of zero pivots; their unknowns
+ * come out 0 (the plates' system treats any as an error, the GMRES least squares takes
+ * the solution in the space the others span). */
+#define A_(r, c) a[(size_t)(r) * (size_t)lda + (size_t)(c)]
+static int dense_solve(int n, double *a, int lda, double *x) {
+    int zero = 0;
     for (int c = 0; c < n; c++) {
         int piv = c;
         for (int r = c + 1; r < n; r++)
-            if (fabs(a[r][c]) > fabs(a[piv][c])) piv = r;
-        if (a[piv][c] == 0.0) return -1;
+            if (fabs(A_(r, c)) > fabs(A_(piv, c))) piv = r;
+        if (A_(piv, c) == 0.0) {
+            zero++;
+            continue;
+        }
         if (piv != c) {
             for (int k = 0; k < n; k++) {
-                double t = a[c][k];
-                a[c][k] = a[piv][k];
-                a[piv][k] = t;
+                double t = A_(c, k);
+                A_(c, k) = A_(piv, k);
+                A_(piv, k) = t;
             }
             double t = x[c];
             x[c] = x[piv];
             x[piv] = t;
         }
         for (int r = c + 1; r < n; r++) {
-            double f = a[r][c] / a[c][c];
-            for (int k = c; k < n; k++) a[r][k] -= f * a[c][k];
+            double f = A_(r, c) / A_(c, c);
+            for (int k = c; k < n; k++) A_(r, k) -= f * A_(c, k);
             x[r] -= f * x[c];
         }
     }
     for (int r = n - 1; r >= 0; r--) {
-        for (int k = r + 1; k < n; k++) x[r] -= a[r][k] * x[k];
-        x[r] /= a[r][r];
+        for (int k = r + 1; k < n; k++) x[r] -= A_(r, k) * x[k];
+        x[r] = A_(r, r) != 0.0 ? x[r] / A_(r, r) : 0.0;
     }
-    return 0;
+    return zero;
 }
+#undef A_
 
 static void neg_grad_prepare(sph_world *w, const double *f, double *fr);
 static void shepard(sph_world *w, double *p, double *pt);
@@ -342,23 +353,6 @@ static void projected_velocity(sph_world *w, const double *p, double dt, int pla
     sph_boundary_sync(w, ru, rv, 1);
 }
 
-/* sum_j m_j (u_i - u_j) . L grad W_ij for the field (ru, rv) (ghosts synced): the source's
- * divergence (renormalised on fluid particles), and a fluid particle's continuity rate */
-static double field_div(const sph_world *w, const double *ru, const double *rv, int i) {
-    int fl = w->kind[i] == SPH_FLUID;
-    double lxx = fl ? w->lxx[i] : 1.0, lxy = fl ? w->lxy[i] : 0.0, lyy = fl ? w->lyy[i] : 1.0;
-    double div = 0.0, ui = ru[i], vi = rv[i];
-    const int *nj = w->nb_j;
-    const double *m = w->m, *ngx = w->nb_gx, *ngy = w->nb_gy;
-    int k0 = w->nb_start[i], k1 = w->nb_start[i + 1];
-#pragma omp simd reduction(+ : div)
-    for (int k = k0; k < k1; k++) {
-        int j = nj[k];
-        double gx = lxx * ngx[k] + lxy * ngy[k], gy = lxy * ngx[k] + lyy * ngy[k];
-        div += m[j] * ((ui - ru[j]) * gx + (vi - rv[j]) * gy);
-    }
-    return div;
-}
 
 /* Projection passes (projection_passes = P): the projection leaves u^{n+1} = u* - dt G p / rho
  * with the divergence D u^{n+1} = dt (L - D G) p / rho, L the compact Laplacian of the
@@ -511,21 +505,14 @@ int sph_pressure_solve(sph_world *w, double dt) {
 #pragma omp parallel for schedule(static) num_threads(threads)
     for (int r = 0; r < nrows; r++) {
         int i = w->row_of[r], e = A->start[r] + 1;
-        double mi = w->m[i], rhoi = w->rho[i], diag = 0.0, div = 0.0;
+        double mi = w->m[i], rhoi = w->rho[i], diag = 0.0;
         double sens[SPH_MAX_LOADED] = {0};
-        double wi_x = svx[i], wi_y = svy[i];
+        double div = field_div(w, svx, svy, i); /* the source: sum_j m_j (u*_i - u*_j) . L grad W */
         int fl = w->kind[i] == SPH_FLUID;
         double lxx = fl ? w->lxx[i] : 1.0, lxy = fl ? w->lxy[i] : 0.0, lyy = fl ? w->lyy[i] : 1.0;
         int k0 = w->nb_start[i], k1 = w->nb_start[i + 1];
         const int *nj = w->nb_j;
         const double *m = w->m, *ngx = w->nb_gx, *ngy = w->nb_gy;
-        /* the source: sum_j m_j (u*_i - u*_j) . L grad W (vectorised) */
-#pragma omp simd reduction(+ : div)
-        for (int k = k0; k < k1; k++) {
-            int j = nj[k];
-            double gx = lxx * ngx[k] + lxy * ngy[k], gy = lxy * ngx[k] + lyy * ngy[k];
-            div += m[j] * ((wi_x - svx[j]) * gx + (wi_y - svy[j]) * gy);
-        }
         for (int q = 0; q < K; q++) { /* loaded plates: d source / d V_q */
             double ax, ay;
             sens_velocity(w, i, loaded[q], &ax, &ay);
@@ -569,7 +556,7 @@ int sph_pressure_solve(sph_world *w, double dt) {
     }
     sph_lap(w, SPH_PHASE_PRESSURE_ASSEMBLY);
 
-    if (pin >= 0) make_compatible(w, w->m[pin] * source_div(w, pin) / (rho0 * dt));
+    if (pin >= 0) make_compatible(w, w->m[pin] * field_div(w, svx, svy, pin) / (rho0 * dt));
 
     if (sph_solver_setup_reuse(&w->solver, A, w->par.solver, threads, w->row_of, w->id))
         return sph_world_fail(w, "pressure solver: multigrid setup failed at step %ld (t = %g, %d unknowns): "
@@ -617,7 +604,7 @@ int sph_pressure_solve(sph_world *w, double dt) {
             a[r][r] += pl->mass / dt;
             x[r] = pl->mass * pl->vel / dt + pl->load + pl->force_visc + F0[loaded[r]];
         }
-        if (dense_solve(K, a, x))
+        if (dense_solve(K, &a[0][0], SPH_MAX_LOADED, x))
             return sph_world_fail(w, "singular plate system at step %ld (t = %g)", w->steps, w->t);
         for (int q = 0; q < K; q++) w->plates[loaded[q]].vel_new = x[q]; /* V^{n+1} */
         int nt = n + w->ng;
@@ -1067,35 +1054,16 @@ static int density_gmres(sph_world *w) {
         }
         m++;
         /* min || beta e_1 + Hbar y ||: normal equations Hbar^T Hbar y = -beta Hbar^T e_1 */
-        double a[SPH_MAX_GMRES][SPH_MAX_GMRES + 1];
+        double a[SPH_MAX_GMRES][SPH_MAX_GMRES];
         for (int r = 0; r < m; r++) {
             for (int c = 0; c < m; c++) {
                 double sum = 0.0;
                 for (int q = 0; q <= m; q++) sum += H[q][r] * H[q][c];
                 a[r][c] = sum;
             }
-            a[r][m] = -beta * H[0][r];
+            y[r] = -beta * H[0][r];
         }
-        for (int c = 0; c < m; c++) { /* Gaussian elimination with partial pivoting */
-            int piv = c;
-            for (int r = c + 1; r < m; r++)
-                if (fabs(a[r][c]) > fabs(a[piv][c])) piv = r;
-            for (int q = 0; q <= m; q++) {
-                double t = a[c][q];
-                a[c][q] = a[piv][q];
-                a[piv][q] = t;
-            }
-            if (a[c][c] == 0.0) continue;
-            for (int r = c + 1; r < m; r++) {
-                double f = a[r][c] / a[c][c];
-                for (int q = c; q <= m; q++) a[r][q] -= f * a[c][q];
-            }
-        }
-        for (int r = m - 1; r >= 0; r--) {
-            double sum = a[r][m];
-            for (int q = r + 1; q < m; q++) sum -= a[r][q] * y[q];
-            y[r] = a[r][r] != 0.0 ? sum / a[r][r] : 0.0;
-        }
+        dense_solve(m, &a[0][0], SPH_MAX_GMRES, y);
         /* the error left, e + B V y = V_{0..m} g with g = beta e_1 + Hbar y */
         double g[SPH_MAX_GMRES + 1], gg = 0.0, maxe = 0.0;
         for (int q = 0; q <= m; q++) {
