@@ -222,6 +222,8 @@ local function bingham_load_case(name, opts)
 end
 
 local BN = 100
+-- the thin-film options (README, Thin films) the film cases run with
+local THIN = { density_correction = "gmres", pressure_gradient = "difference" }
 
 M.cases = {
   {
@@ -244,7 +246,7 @@ M.cases = {
     resolutions = { 1 / 30, 1 / 40, 1 / 60, 1 / 80 },
     quick = { 1 / 30, 1 / 40 },
     run = velocity_case("Newtonian squeeze, thin film", { Re = 1, Bn = 0, h_end = 0.17, h_win = 0.18, width = 1.6, height = 0.2,
-                                                        world = { density_correction = "gmres", pressure_gradient = "difference" } },
+                                                        world = THIN },
       function(h, V, A) return M.newtonian_force(h, V, 1, A) end),
   },
   {
@@ -259,7 +261,7 @@ M.cases = {
     resolutions = { 1 / 30, 1 / 40, 1 / 60, 1 / 80 },
     quick = { 1 / 30, 1 / 40 },
     run = velocity_case("Bingham squeeze, thin film", { Re = 1, Bn = BN, M = 100, h_end = 0.17, h_win = 0.18, width = 1.6, height = 0.2,
-                                                      world = { density_correction = "gmres", pressure_gradient = "difference" } },
+                                                      world = THIN },
       function(h, V, A) return M.bingham_force(h, V, 1, BN, A) end),
   },
   {
@@ -284,7 +286,7 @@ M.cases = {
     resolutions = { 1 / 30, 1 / 40, 1 / 60, 1 / 80 },
     quick = { 1 / 30, 1 / 40 },
     run = load_case("Newtonian squeeze under load, thin film", { Re = 1, F = 400, h_end = 0.17, h_win = 0.18, width = 1.6, height = 0.2,
-                                                               world = { density_correction = "gmres", pressure_gradient = "difference" } }),
+                                                               world = THIN }),
   },
   {
     name = "Bingham squeeze Bn = 100 V = 1",
