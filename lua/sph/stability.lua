@@ -120,7 +120,7 @@ function S.surface_check(w, dx, y_lo, y_hi)
 end
 
 -- Runs case c to t_end (default c.t_end); opts: dx (default 1/40), threads, world (more
--- sph.world options), check_every (steps between surface checks, default 20). Returns a
+-- sph.world options), check_every (steps between surface checks, default 5). Returns a
 -- table: ok, err (the engine's message), t, steps, wall, p_iter and v_iter (per step),
 -- emax (largest max density error of any step), h, backup (largest rise of a loaded plate
 -- above its lowest position), inside and missing (the surface checks' worst counts), why
@@ -133,7 +133,7 @@ function S.run(c, t_end, opts)
   for k, v in pairs(opts.world or {}) do wopts[k] = v end
   local w, top = squeeze.build{ dx = dx, Re = c.Re, Bn = c.Bn, M = c.M, mode = c.mode, F = c.F,
                                 h_min = c.h_min or 0.3, world = wopts }
-  local every = opts.check_every or 20
+  local every = opts.check_every or 5
   local hmin, backup, inside, missing = top.position, 0, 0, 0
   local ok, err = pcall(function()
     while w.t < t_end - 1e-12 do
