@@ -229,6 +229,8 @@ struct sph_world {
     int rows_cap;
     int nrows;
     int pin;                   /* pinned pressure unknown (no free surface) or -1    */
+    long fallback_after;       /* pressure.c: no GMRES fallback before this step     */
+    int fallback_wait;         /* steps to wait after the next useless fallback      */
     int *row_of;               /* row -> particle                                   */
 
     double t, dt, wall_time;

@@ -506,6 +506,7 @@ static int w_stats(lua_State *L) {
     SETN("peak_density_error", s.peak_density_error);
     SETN("density_alpha", s.density_alpha);
     SETI("density_passes", s.density_passes);
+    SETI("density_fallbacks", s.density_fallbacks);
     SETN("kinetic_energy", s.kinetic_energy);
     SETN("area", s.area);
     SETN("max_speed", s.max_speed);

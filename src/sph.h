@@ -180,6 +180,8 @@ typedef struct sph_stats {
     double peak_density_error; /* the largest max_density_error of any step so far */
     double density_alpha;     /* smallest step length of the last step's density passes (1: full) */
     int density_passes;       /* density-correction passes in the last step */
+    long density_fallbacks;   /* steps whose passes stalled above density_limit and
+                                 took a GMRES correction after them (pressure.c) */
     double kinetic_energy;    /* sum 1/2 m |u|^2 over fluid               */
     double area;              /* sum m / rho over fluid                   */
     double max_speed;
