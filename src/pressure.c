@@ -871,8 +871,11 @@ int sph_density_correct(sph_world *w) {
      *   pass used and the time step collapsed at h = 0.221 (22 %); a fallback at every
      *   stalled step: h = 0.187 (2369 fallbacks; the error left over the error before 0.43
      *   at best, median 0.9999: a few corrections do the work); waiting 10 steps after a
-     *   useless one: h = 0.172; with the doubling: h = 0.196. Still short of 0.15: the
-     *   symmetric gradient's alternating mode next to the symmetry plane (top of file);
+     *   useless one: h = 0.172; with the doubling: h = 0.196. On two threads 0.238 ->
+     *   0.230 (a particle through the upper plate next to the symmetry plane): a small gain
+     *   inside the run-to-run spread of where this film fails, not a cure. Still short of
+     *   0.15: the symmetric gradient's alternating mode next to the symmetry plane (top of
+     *   file) and the stretched lattice of the stagnation zone;
      * - the lid-driven cavity (Re = 100, dx = 1/20, closed: tests/lua/test_cavity.lua),
      *   whose passes leave 1-10 % (median 5.4 %) every step, at its corners: a fallback at
      *   every step doubled its cost (pressure-type iterations a step 36.8 -> 68.3, steps
