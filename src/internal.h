@@ -230,7 +230,7 @@ struct sph_world {
     int nrows;
     int pin;                   /* pinned pressure unknown (no free surface) or -1    */
     long fallback_after;       /* pressure.c: no GMRES fallback before this step     */
-    int fallback_wait;         /* steps to wait after the next useless fallback      */
+    int fallback_wait;         /* the last wait set (0: the last fallback helped)    */
     int *row_of;               /* row -> particle                                   */
 
     double t, dt, wall_time;

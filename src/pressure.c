@@ -889,10 +889,10 @@ int sph_density_correct(sph_world *w) {
         double alpha = w->st.density_alpha;
         if (density_gmres(w)) return -1;
         double left = w->st.density_alpha; /* L2 error left over the error before */
-        if (left > FALLBACK_USELESS) {
-            if (w->fallback_wait < FALLBACK_WAIT) w->fallback_wait = FALLBACK_WAIT;
+        if (left > FALLBACK_USELESS) { /* waits 10, 20, 40, ..., 640, 640, ... steps */
+            int wait = w->fallback_wait;
+            w->fallback_wait = wait == 0 ? FALLBACK_WAIT : wait < FALLBACK_WAIT_MAX ? 2 * wait : wait;
             w->fallback_after = w->steps + w->fallback_wait;
-            if (w->fallback_wait < FALLBACK_WAIT_MAX) w->fallback_wait *= 2;
         } else {
             w->fallback_wait = 0;
         }
