@@ -1,7 +1,8 @@
 /* Saving and loading a world's state (w:save, sph.load): the parameters, materials,
- * plates, clock and statistics, and every real particle's persistent fields, in the
- * particles' current order. The file is for the same build (raw structs, checked by a
- * header of sizes): a restart on this machine, not an exchange format. Ghosts, neighbour
+ * plates, clock and statistics (with the density correction's fallback wait), and every
+ * real particle's persistent fields, in the particles' current order. The file is for the
+ * same build (raw structs, checked by a header of sizes): a restart on this machine, not an
+ * exchange format. Ghosts, neighbour
  * lists and solver hierarchies are rebuilt by the next step, so a continued run agrees
  * with the uninterrupted one to the solvers' tolerances, not to the last bit (the pressure
  * multigrid hierarchy is reused for up to 20 steps in a run and rebuilt after a load). */
@@ -11,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define STATE_MAGIC "SPHSTAT1"
+#define STATE_MAGIC "SPHSTAT2" /* 2: the density fallback's wait (pressure.c) */
 
 typedef struct {
     char magic[8];
@@ -47,6 +48,8 @@ int sph_world_save(sph_world *w, const char *file) {
     double dbl[4] = {w->t, w->dt, w->dt_prev, w->wall_time};
     ok = ok && fwrite(ints, sizeof ints, 1, f) == 1 && fwrite(dbl, sizeof dbl, 1, f) == 1;
     ok = ok && fwrite(&w->steps, sizeof w->steps, 1, f) == 1;
+    long wait[2] = {w->fallback_after, w->fallback_wait};
+    ok = ok && fwrite(wait, sizeof wait, 1, f) == 1;
     ok = ok && fwrite(&w->st, sizeof w->st, 1, f) == 1;
     ok = ok && fwrite(w->phase_time, sizeof w->phase_time, 1, f) == 1;
     size_t n = (size_t)w->n;
@@ -96,6 +99,12 @@ sph_world *sph_world_load(const char *file, char *err, size_t errlen) {
     ok = ok && fread(w->plates, sizeof w->plates[0], SPH_MAX_PLATES, f) == SPH_MAX_PLATES;
     ok = ok && fread(ints, sizeof ints, 1, f) == 1 && fread(dbl, sizeof dbl, 1, f) == 1;
     ok = ok && fread(&w->steps, sizeof w->steps, 1, f) == 1;
+    long wait[2];
+    ok = ok && fread(wait, sizeof wait, 1, f) == 1 && wait[1] >= 0 && wait[1] <= 1L << 20;
+    if (ok) {
+        w->fallback_after = wait[0];
+        w->fallback_wait = (int)wait[1];
+    }
     ok = ok && fread(&w->st, sizeof w->st, 1, f) == 1;
     ok = ok && fread(w->phase_time, sizeof w->phase_time, 1, f) == 1;
     ok = ok && ints[0] >= 0 && ints[1] >= 0 && ints[1] <= ints[0] && w->nmats >= 0 &&

@@ -42,4 +42,31 @@ T.case("save, load and continue", function()
   T.checkerror("no plate 3", "w:plate(k) beyond the plates", w2.plate, w2, 3)
 end)
 
+-- The density correction's GMRES fallback (pressure.c) waits after a useless one (10, 20,
+-- ... 640 steps); the wait is part of the state. The lid-driven cavity (closed, dx = 1/20:
+-- its passes leave 1-10 % every step) takes fallbacks from its first steps, nearly all
+-- useless; saved at step 60 (3 fallbacks so far) and continued 150 steps, the loaded world
+-- must take as many as the uninterrupted one (measured: 5 and 5; before the wait was
+-- saved the loaded world started with none: 4 against 5).
+T.case("save, load and continue: the density fallback's wait", function()
+  local file = os.tmpname()
+  local dx, T3 = 1 / 20, 3 / 20
+  local w = sph.world{ dx = dx, rho = 1, threads = o.threads or 1, shifting = 20, density_tol = 0.04, surface = 0 }
+  w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 0.01 } }
+  w:plate{ rect = { -T3, -T3, 1 + T3, 0 } }
+  w:plate{ rect = { -T3, 0, 0, 1 + T3 } }
+  w:plate{ rect = { 1, 0, 1 + T3, 1 + T3 } }
+  w:plate{ rect = { 0, 1, 1, 1 + T3 }, slide = { 1, 0 } }
+  for _ = 1, 60 do w:step() end
+  local f0 = w:stats().density_fallbacks
+  w:save(file)
+  local w2 = sph.load(file)
+  os.remove(file)
+  for _ = 1, 150 do w:step(); w2:step() end
+  local a, b = w:stats().density_fallbacks - f0, w2:stats().density_fallbacks - f0
+  print(string.format("# cavity: %d fallbacks in 60 steps; then %d in the run, %d in the loaded one", f0, a, b))
+  T.check(f0 > 0, "the cavity takes GMRES fallbacks", f0)
+  T.check(a == b, "the loaded world takes the fallbacks the uninterrupted one takes", a .. " against " .. b)
+end)
+
 T.done()
