@@ -41,10 +41,12 @@ end
 -- p = 0) are not checked. The half sample's other sides are the symmetry plane and the
 -- plates, with no free surface. Returns the counts inside and missing and the lists of the
 -- inside particles' and of the missing ones' indices.
-function S.surface_check(w, dx, y_lo, y_hi)
+-- The sample's outline in rows of height dx: the fields x, y, surface, the particles by
+-- cell (cells, key) and outer[r], the outermost x of row r. The outline is the body's, not
+-- the spray's: a particle with fewer than 3 others within 1.5 dx (a droplet thrown off the
+-- contact line, as at Re = 1000) does not set it.
+local function outline(w, dx)
   local x, y, s = w:field("x"), w:field("y"), w:field("surface")
-  -- the outline is the body's, not the spray's: a particle with fewer than 3 others within
-  -- 1.5 dx (a droplet thrown off the contact line, as at Re = 1000) does not set it
   local cells = {}
   local function key(i, j) return i * 1000003 + j end
   for k = 1, #x do
@@ -70,6 +72,16 @@ function S.surface_check(w, dx, y_lo, y_hi)
     local r = math.floor(y[k] / dx)
     if (not outer[r] or x[k] > outer[r]) and body(k) then outer[r] = x[k] end
   end
+  return x, y, s, cells, key, outer
+end
+
+-- x of the outermost particle of row r and the rows beside it
+local function far_of(outer, r)
+  return math.max(outer[r - 1] or -math.huge, outer[r] or -math.huge, outer[r + 1] or -math.huge)
+end
+
+function S.surface_check(w, dx, y_lo, y_hi)
+  local x, y, s, cells, key, outer = outline(w, dx)
   -- a surface particle is "inside" when it is enclosed: each of the eight 45-degree cones
   -- around it (centred every 45 degrees) holds another particle within 1.6 dx; the plates
   -- count as the wall particles half a spacing beyond their faces
@@ -105,7 +117,7 @@ function S.surface_check(w, dx, y_lo, y_hi)
   local inside, missing, list, mlist = 0, 0, {}, {}
   for k = 1, #x do
     local r = math.floor(y[k] / dx)
-    local far = math.max(outer[r - 1] or -math.huge, outer[r] or -math.huge, outer[r + 1] or -math.huge)
+    local far = far_of(outer, r)
     if s[k] == 1 and x[k] < far - 3 * dx and enclosed(k) then inside = inside + 1; list[#list + 1] = k end
     if s[k] == 0 and outer[r] and x[k] >= outer[r] and y[k] > y_lo + dx and y[k] < y_hi - dx then
       local exposed = true
@@ -117,6 +129,21 @@ function S.surface_check(w, dx, y_lo, y_hi)
     end
   end
   return inside, missing, list, mlist
+end
+
+-- Free-surface flags deep inside the sample, enclosed or not: more than 3 dx inside the
+-- outline (surface_check's) and more than 3 dx from the plates at y_lo and y_hi. Returns
+-- their count.
+function S.flags_inside(w, dx, y_lo, y_hi)
+  local x, y, s, _, _, outer = outline(w, dx)
+  local deep = 0
+  for k = 1, #x do
+    if s[k] == 1 and x[k] < far_of(outer, math.floor(y[k] / dx)) - 3 * dx and y[k] > y_lo + 3 * dx and
+       y[k] < y_hi - 3 * dx then
+      deep = deep + 1
+    end
+  end
+  return deep
 end
 
 -- Runs case c to t_end (default c.t_end); opts: dx (default 1/40), threads, world (more

@@ -41,20 +41,7 @@ T.case("thin film: no surface flags inside the stretched sample (steps 1-3000)",
   local total, worst, at = 0, 0, 0
   for s = 1, 3000 do
     w:step()
-    local x, y, f = w:field("x"), w:field("y"), w:field("surface")
-    local outer = {}
-    for k = 1, #x do
-      local r = math.floor(y[k] / dx)
-      if not outer[r] or x[k] > outer[r] then outer[r] = x[k] end
-    end
-    local deep = 0
-    for k = 1, #x do
-      local r = math.floor(y[k] / dx)
-      local far = math.max(outer[r - 1] or -math.huge, outer[r], outer[r + 1] or -math.huge)
-      if f[k] == 1 and x[k] < far - 3 * dx and y[k] > 3 * dx and y[k] < top.position - 3 * dx then
-        deep = deep + 1
-      end
-    end
+    local deep = stability.flags_inside(w, dx, 0, top.position)
     total = total + deep
     if deep > worst then worst, at = deep, s end
   end
