@@ -169,7 +169,7 @@ static int l_world(lua_State *L) {
     static const char *const keys[] = {"dx", "h", "rho", "gravity", "viscosity", "shifting",
                                        "cfl", "cvisc", "cforce", "dt_max", "periodic", "symmetry",
                                        "threads", "tol", "max_iter", "surface", "density_relax",
-                                       "density_tol", "density_passes", "density_limit", "density_diffusion", "density_solve_tol", "pressure_predictor", "solver", "density_correction", "pressure_gradient", "wall", "projection_passes", 0};
+                                       "density_tol", "density_passes", "density_limit", "density_diffusion", "density_solve_tol", "pressure_predictor", "solver", "density_correction", "pressure_gradient", "wall", "projection_passes", "density_descent", 0};
     luaL_checktype(L, 1, LUA_TTABLE);
     sph_lua_opt_only(L, 1, "world", keys);
     sph_params p;
@@ -192,6 +192,7 @@ static int l_world(lua_State *L) {
     p.density_passes = (int)sph_lua_opt_number(L, 1, "world", "density_passes", p.density_passes);
     p.projection_passes = (int)sph_lua_opt_number(L, 1, "world", "projection_passes", p.projection_passes);
     p.density_limit = sph_lua_opt_number(L, 1, "world", "density_limit", p.density_limit);
+    p.density_descent = (int)sph_lua_opt_number(L, 1, "world", "density_descent", p.density_descent);
     p.density_diffusion = sph_lua_opt_number(L, 1, "world", "density_diffusion", p.density_diffusion);
     p.density_solve_tol = sph_lua_opt_number(L, 1, "world", "density_solve_tol", p.density_solve_tol);
     p.pressure_predictor = sph_lua_opt_number(L, 1, "world", "pressure_predictor", p.pressure_predictor);
@@ -507,6 +508,7 @@ static int w_stats(lua_State *L) {
     SETN("density_alpha", s.density_alpha);
     SETI("density_passes", s.density_passes);
     SETI("density_fallbacks", s.density_fallbacks);
+    SETI("density_descents", s.density_descents);
     SETN("kinetic_energy", s.kinetic_energy);
     SETN("area", s.area);
     SETN("max_speed", s.max_speed);

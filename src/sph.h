@@ -90,6 +90,10 @@ typedef struct sph_params {
     int pressure_gradient; /* the projection's gradient: SPH_GRAD_SYMMETRIC (default,
                               momentum-conserving) or SPH_GRAD_DIFFERENCE (first-order
                               consistent: renormalised sum V_j (p_j - p_i) grad W)    */
+    int density_descent;   /* in [0, 100]: when the passes leave the error above
+                              density_limit, up to this many steepest-descent moves of
+                              the particles down the density error's gradient
+                              (pressure.c); default 20, 0: none                      */
     int projection_passes; /* in [0, 10]: extra projections of the residual divergence the
                               compact Laplacian leaves (D G != L), each one more solve of
                               the pressure system per step (pressure.c); default 0    */
@@ -182,6 +186,7 @@ typedef struct sph_stats {
     int density_passes;       /* density-correction passes in the last step */
     long density_fallbacks;   /* steps whose passes stalled above density_limit and
                                  took a GMRES correction after them (pressure.c) */
+    long density_descents;    /* steepest-descent moves so far (density_descent)  */
     double kinetic_energy;    /* sum 1/2 m |u|^2 over fluid               */
     double area;              /* sum m / rho over fluid                   */
     double max_speed;

@@ -28,6 +28,7 @@ void sph_params_default(sph_params *p) {
     p->density_relax = 1.0;
     p->density_passes = 2;
     p->density_limit = 0.008;
+    p->density_descent = 20;
     p->density_diffusion = 0.0;
     p->density_solve_tol = 1e-3;
     p->pressure_predictor = 1.0;
@@ -58,7 +59,7 @@ static const char *check_params(const sph_params *p) {
         "solver must be SPH_SOLVER_AMG or SPH_SOLVER_JACOBI", "density_limit must be in [0, 1) (0: none)", "density_diffusion must be in [0, 0.25]", "density_solve_tol must be in (0, 1)",
         "pressure_predictor must be in [0, 1]", "density_gmres must be 0 or 1",
         "pressure_gradient must be SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE", "wall_curved must be 0 or 1",
-        "projection_passes must be in [0, 10]"};
+        "projection_passes must be in [0, 10]", "density_descent must be in [0, 100]"};
     if (!(p->dx > 0 && isfinite(p->dx))) return bad[0];
     if (!(p->h >= 0 && isfinite(p->h))) return bad[1];
     if (!(p->rho0 > 0 && isfinite(p->rho0))) return bad[2];
@@ -83,6 +84,7 @@ static const char *check_params(const sph_params *p) {
     if (p->pressure_gradient != SPH_GRAD_SYMMETRIC && p->pressure_gradient != SPH_GRAD_DIFFERENCE) return bad[19];
     if (p->wall_curved != 0 && p->wall_curved != 1) return bad[20];
     if (!(p->projection_passes >= 0 && p->projection_passes <= 10)) return bad[21];
+    if (!(p->density_descent >= 0 && p->density_descent <= 100)) return bad[22];
     return 0;
 }
 
