@@ -187,6 +187,8 @@ typedef struct sph_stats {
     long density_fallbacks;   /* steps whose passes stalled above density_limit and
                                  took a GMRES correction after them (pressure.c) */
     long density_descents;    /* steepest-descent moves so far (density_descent)  */
+    int floating_walls;       /* active walls the fluid does not reach, left out of
+                                 the last pressure system (pressure.c)            */
     double kinetic_energy;    /* sum 1/2 m |u|^2 over fluid               */
     double area;              /* sum m / rho over fluid                   */
     double max_speed;
