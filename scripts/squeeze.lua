@@ -9,8 +9,9 @@
 -- thinner; default h_min), viscosity, shifting, threads, out (folder); width and
 -- height (the half sample's, default 0.5 and 1: a film started thin is width=1.6
 -- height=0.2), and the engine options density_correction, pressure_gradient, wall (the
--- thin-film options: density_correction=gmres pressure_gradient=difference; README) and
--- projection_passes (README, Validation).
+-- thin-film options: at constant velocity pressure_gradient=difference, under a load
+-- density_correction=gmres pressure_gradient=difference; README, Thin films),
+-- density_descent and projection_passes (README, Validation).
 -- Writes out/series.csv: t, h, plate velocity, plate force, solver iterations, max
 -- density error, and the lubrication reference (Newtonian: mu V / h^6 or h(t) under load).
 -- frames=N (default 0): N yield-state frames evenly over the run into out/frames/f_0001.png
@@ -28,7 +29,7 @@ local out = o.out or "out/squeeze"
 
 local world_opts = { threads = o.threads, viscosity = o.viscosity, shifting = o.shifting,
                      density_correction = o.density_correction, pressure_gradient = o.pressure_gradient, wall = o.wall,
-                     projection_passes = o.projection_passes }
+                     projection_passes = o.projection_passes, density_descent = o.density_descent }
 local width, height = o.width or 0.5, o.height or 1
 -- the plates are sized for the sample spread to the gap h_min; the run ends at h_stop, by
 -- default h_min (thinner, the sample would flow off the plates' ends)
@@ -72,14 +73,16 @@ local function frame(w)
 end
 local ts, hs, fs, refs = {}, {}, {}, {}
 -- a film a few particles thick is where the defaults fail (README, Thin films): say so once
-local thin_noted = o.density_correction == "gmres" and o.pressure_gradient == "difference"
+local thin_noted = o.pressure_gradient == "difference"
+local thin_options = mode == "velocity" and "pressure_gradient=difference"
+                     or "density_correction=gmres pressure_gradient=difference"
 local function record(w)
   local s = w:stats()
   local h = top.position
   if not thin_noted and h < 12 * dx then
     thin_noted = true
     print(string.format("note: t=%.4g, the gap h=%.4f is %.1f particles across; the defaults fail in thin films "
-      .. "(README, Thin films): density_correction=gmres pressure_gradient=difference", w.t, h, h / dx))
+      .. "(README, Thin films): %s", w.t, h, h / dx, thin_options))
   end
   series:write(string.format("%.8g,%.8g,%.8g,%.8g,%d,%.4e,%s\n", w.t, h, top.velocity, top.force,
     s.solver_iterations, s.max_density_error, ref(h, w.t) == ref(h, w.t) and string.format("%.8g", ref(h, w.t)) or ""))
