@@ -931,16 +931,17 @@ static int density_pass(sph_world *w, int pass);
  *   its free surface gathered the error (the passes at step length 0, 1 % at h = 0.238,
  *   9 % at h = 0.196 where the time step collapsed). With the descent the error never
  *   passes 0.80 %; one move brings it under density_limit at nearly every step that takes
- *   one (descents at 1 step in 10 from h = 0.24); the film now runs to h = 0.1507
+ *   one (162 moves in steps 3001-4582, two threads); the film then ran to h = 0.1507
  *   (10,096 steps), where the symmetric gradient's alternating pressure mode (the plate
- *   force changes sign every step and grows) collapses the time step; on two threads to
- *   h = 0.175. The full sample without the symmetry plane fails the same way as the half
- *   one did (1 % at h = 0.232): it is the front, not the plane;
+ *   force changes sign every step and grows) collapsed the time step (two threads:
+ *   h = 0.175); with that gradient's own term in the matrix (SELF_TERM) it reaches
+ *   h = 0.15. The full sample without the symmetry plane failed the same way as the half
+ *   one (1 % at h = 0.232): it is the front, not the plane;
  * - the lid-driven cavity (tests/lua/test_cavity.lua, closed, dx = 1/20), whose passes
  *   left 1-10 % at its corners every step: 5,808 steps to t = 10 -> 810 (the time step is
  *   no longer held down by the density error), 38.1 -> 9.7 pressure-type iterations a
- *   step, RMS against Ghia 0.0118 -> 0.0147 U (the larger step's error; the test's bound
- *   0.0184), no GMRES fallback any more;
+ *   step, RMS against Ghia 0.0118 -> 0.0147 U (the larger step's error; 0.0177 with
+ *   SELF_TERM; the test's bound 0.0184), no GMRES fallback any more;
  * - the other five stability cases and the headline squeeze: no descent (the passes reach
  *   density_limit), the same steps to the same figures. */
 #define DESCENT_MAX_MOVE 0.05
@@ -973,15 +974,14 @@ static int density_descent(sph_world *w, int K) {
         }
         if (!(gmax > 0.0)) break;
         sph_boundary_sync(w, dx, dy, 1);
-        double num = 0.0, den = 0.0, e2 = 0.0;
-#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : num, den, e2)
+        double num = 0.0, den = 0.0;
+#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : num, den)
         for (int i = 0; i < n; i++) {
             d[i] = 0.0;
             if (w->kind[i] != SPH_FLUID || w->surf[i]) continue;
             d[i] = field_div(w, dx, dy, i);
             num -= e[i] * d[i];
             den += d[i] * d[i] / rho0;
-            e2 += e[i] * e[i];
         }
         if (!(num > 0.0 && den > 0.0)) break;
         double alpha = fmin(num / den, DESCENT_MAX_MOVE * w->dx / sqrt(gmax));
@@ -1014,7 +1014,8 @@ int sph_density_correct(sph_world *w) {
      * row-to-row noise). First the descent (density_descent, above: it always lowers the
      * error); if that leaves it above density_limit, one GMRES correction (density_gmres)
      * combines directions instead (the measurements below are from before the descent,
-     * which now leaves the thin film and the cavity under the limit without it). When it removes less than 5 % of the error (L2) the next fallback waits
+     * which now leaves the thin film and the cavity under the limit without it). When it
+     * removes less than 5 % of the error (L2) the next fallback waits
      * FALLBACK_WAIT steps, doubling with each useless one up to FALLBACK_WAIT_MAX; one that
      * helps resets the wait. Measured (one thread):
      * - the stability suite's thin film (square sample to h = 0.15, dx = 1/40): without the
