@@ -287,6 +287,47 @@ int sph_pressure_solve(sph_world *w, double dt);
 void sph_pressure_correct(sph_world *w, double dt);
 void sph_pressure_predictor(sph_world *w, double *ax, double *ay);
 int sph_density_correct(sph_world *w);
+/* The pressure system's pieces the density correction (density.c) shares (pressure.c) */
+void sph_pressure_neg_grad_prepare(sph_world *w, const double *f, double *fr);
+void sph_pressure_scatter(sph_world *w, const double *sol, double *p);
+void sph_pressure_make_compatible(sph_world *w, double pin_source);
+int sph_pressure_dense_solve(int n, double *a, int lda, double *x);
+/* sum_j m_j (u_i - u_j) . L grad W_ij for the field (ru, rv) (ghosts synced): the source's
+ * divergence (renormalised on fluid particles), and a fluid particle's continuity rate */
+static inline double sph_field_div(const sph_world *w, const double *ru, const double *rv, int i) {
+    int fl = w->kind[i] == SPH_FLUID;
+    double lxx = fl ? w->lxx[i] : 1.0, lxy = fl ? w->lxy[i] : 0.0, lyy = fl ? w->lyy[i] : 1.0;
+    double div = 0.0, ui = ru[i], vi = rv[i];
+    const int *nj = w->nb_j;
+    const double *m = w->m, *ngx = w->nb_gx, *ngy = w->nb_gy;
+    int k0 = w->nb_start[i], k1 = w->nb_start[i + 1];
+#pragma omp simd reduction(+ : div)
+    for (int k = k0; k < k1; k++) {
+        int j = nj[k];
+        double gx = lxx * ngx[k] + lxy * ngy[k], gy = lxy * ngx[k] + lyy * ngy[k];
+        div += m[j] * ((ui - ru[j]) * gx + (vi - rv[j]) * gy);
+    }
+    return div;
+}
+
+/* -(grad f)_i / rho_i, symmetric form: -sum_j m_j (fr_i + fr_j) grad_i W_ij with fr = f / rho^2
+ * (sph_pressure_neg_grad_prepare; f synced on ghosts) */
+static inline void sph_neg_grad(const sph_world *w, const double *fr, int i, double *ax, double *ay) {
+    double fi = fr[i], gx = 0.0, gy = 0.0;
+    const int *nj = w->nb_j;
+    const double *m = w->m, *ngx = w->nb_gx, *ngy = w->nb_gy;
+    int k0 = w->nb_start[i], k1 = w->nb_start[i + 1];
+#pragma omp simd reduction(+ : gx, gy)
+    for (int k = k0; k < k1; k++) {
+        int j = nj[k];
+        double c = m[j] * (fi + fr[j]);
+        gx -= c * ngx[k];
+        gy -= c * ngy[k];
+    }
+    *ax = gx;
+    *ay = gy;
+}
+
 /* shifting.c */
 void sph_shifting_apply(sph_world *w, double dt);
 
