@@ -131,15 +131,10 @@ static int density_descent(sph_world *w, int K) {
         for (int i = 0; i < n; i++) {
             dx[i] = dy[i] = 0.0;
             if (w->kind[i] != SPH_FLUID) continue;
-            double ei = e[i], gx = 0.0, gy = 0.0;
-            for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
-                int j = w->nb_j[k];
-                double c = w->m[j] * (ei + e[j]);
-                gx += c * w->nb_gx[k];
-                gy += c * w->nb_gy[k];
-            }
-            dx[i] = -(w->lxx[i] * gx + w->lxy[i] * gy);
-            dy[i] = -(w->lxy[i] * gx + w->lyy[i] * gy);
+            double gx, gy; /* -sum_j m_j (e_i + e_j) grad W_ij: the symmetric gradient of e */
+            sph_neg_grad(w, e, i, &gx, &gy);
+            dx[i] = w->lxx[i] * gx + w->lxy[i] * gy;
+            dy[i] = w->lxy[i] * gx + w->lyy[i] * gy;
             double g2 = dx[i] * dx[i] + dy[i] * dy[i];
             if (g2 > gmax) gmax = g2;
         }
