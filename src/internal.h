@@ -167,7 +167,7 @@ struct sph_world {
     double *p, *rho, *m;       /* pressure, density, mass                           */
     double *phi;               /* density-correction potential (dt^2 p units)       */
     double *dp;                /* scratch: the density correction's later passes    */
-    double *gm;                /* the GMRES density correction's vectors (pressure.c) */
+    double *gm;                /* the GMRES density correction's vectors (density.c)  */
     size_t gm_len;             /* doubles in gm                                      */
     double *eta, *gd, *divr;   /* apparent viscosity, shear rate, position div      */
     double *lxx, *lxy, *lyy;   /* kernel-gradient renormalisation (Bonet & Lok 1999) */
@@ -229,7 +229,7 @@ struct sph_world {
     int rows_cap;
     int nrows;
     int pin;                   /* pinned pressure unknown (no free surface) or -1    */
-    long fallback_after;       /* pressure.c: no GMRES fallback before this step     */
+    long fallback_after;       /* density.c: no GMRES fallback before this step      */
     int fallback_wait;         /* the last wait set (0: the last fallback helped)    */
     int *row_of;               /* row -> particle                                   */
 

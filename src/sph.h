@@ -60,7 +60,7 @@ typedef struct sph_params {
     int max_iter;          /* pressure solver: iteration limit                     */
     double surface_div;    /* free surface where div r < surface_div (2D: 2 full)  */
     double density_relax;  /* fraction of the density error removed each step by the
-                              density correction (pressure.c); 1 by default           */
+                              density correction (density.c); 1 by default            */
     int density_passes;    /* density corrections per step at most, while the
                               error exceeds density_tol; default 2                  */
     double density_tol;    /* dt shrinks while the max density error exceeds this
@@ -81,7 +81,7 @@ typedef struct sph_params {
                               default 1; ignored with explicit viscosity             */
     int density_gmres;     /* 1: the density correction minimises the continuity
                               density's error over the Krylov space of its passes
-                              (GMRES; pressure.c); 0 (default): successive passes,
+                              (GMRES; density.c); 0 (default): successive passes,
                               each with a least-squares step length                 */
     int wall_curved;       /* 1: the no-slip wall velocity extrapolates the fluid's with the
                               profile's curvature from the momentum balance (viscous.c;
@@ -93,7 +93,7 @@ typedef struct sph_params {
     int density_descent;   /* in [0, 100]: when the passes leave the error above
                               density_limit, up to this many steepest-descent moves of
                               the particles down the density error's gradient
-                              (pressure.c); default 20, 0: none                      */
+                              (density.c); default 20, 0: none                       */
     int projection_passes; /* in [0, 10]: extra projections of the residual divergence the
                               compact Laplacian leaves (D G != L), each one more solve of
                               the pressure system per step (pressure.c); default 0    */
@@ -185,7 +185,7 @@ typedef struct sph_stats {
     double density_alpha;     /* smallest step length of the last step's density passes (1: full) */
     int density_passes;       /* density-correction passes in the last step */
     long density_fallbacks;   /* steps whose passes stalled above density_limit and
-                                 took a GMRES correction after them (pressure.c) */
+                                 took a GMRES correction after them (density.c) */
     long density_descents;    /* steepest-descent moves so far (density_descent)  */
     int floating_walls;       /* active walls the fluid does not reach, left out of
                                  the last pressure system (pressure.c)            */

@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define STATE_MAGIC "SPHSTAT2" /* 2: the density fallback's wait (pressure.c) */
+#define STATE_MAGIC "SPHSTAT2" /* 2: the density fallback's wait (density.c) */
 
 typedef struct {
     char magic[8];

@@ -43,7 +43,7 @@ T.case("lid-driven cavity, Re = 100, against Ghia, Ghia & Shin (1982)", function
   -- max up to 0.042, kinetic energy within 1.5 %. Tolerances 1.25 x the largest: RMS
   -- 0.0184, max 0.053. Session 8, the box declared closed (surface = 0; see flows.lua):
   -- RMS 0.0142, max 0.0386 in 5064 steps, inside the same tolerances. Session 10, the
-  -- density correction's GMRES fallback (pressure.c: the passes leave 1-10 % at the
+  -- density correction's GMRES fallback (density.c: the passes leave 1-10 % at the
   -- corners every step): RMS 0.0118, max 0.0271 in 5808 steps (0.0157 / 0.0429 in 5318
   -- just before it).
   T.below(r.error, 0.0184, "cavity centreline velocities within 0.0184 U (RMS) of Ghia et al. at dx = 1/20")

@@ -42,7 +42,7 @@ T.case("save, load and continue", function()
   T.checkerror("no plate 3", "w:plate(k) beyond the plates", w2.plate, w2, 3)
 end)
 
--- The density correction's GMRES fallback (pressure.c) waits after a useless one (10, 20,
+-- The density correction's GMRES fallback (density.c) waits after a useless one (10, 20,
 -- ... 640 steps); the wait is part of the state. The lid-driven cavity (closed, dx = 1/20:
 -- its passes leave 1-10 % every step) takes fallbacks from its first steps, nearly all
 -- useless; saved at step 60 (3 fallbacks so far) and continued 150 steps, the loaded world

@@ -51,7 +51,7 @@ T.case("thin film: no surface flags inside the stretched sample (steps 1-3000)",
           total .. " in all, " .. worst .. " at step " .. at)
   -- On to h = 0.225: from h = 0.24 the film's front is a tongue whose rows next to the
   -- free surface gather a density error the passes cannot take out (their step length 0);
-  -- the density descent (pressure.c) keeps it at density_limit. Measured max density error
+  -- the density descent (density.c) keeps it at density_limit. Measured max density error
   -- (one thread): 0.80 % with the descent, 1.0 % at h = 0.2376 and 5.2 % by h = 0.226
   -- without it (density_descent = 0). The limit is the suite's 1 %.
   local emax = 0

@@ -1,4 +1,4 @@
-/* density_diffusion (pressure.c): on a periodic lattice (no free surface, no wall) one step
+/* density_diffusion (density.c): on a periodic lattice (no free surface, no wall) one step
  * keeps the sum of the densities, damps a particle-scale checkerboard strongly and a
  * smooth mode hardly at all, and kappa = 0 leaves the density alone. */
 #include "../../src/internal.h"
