@@ -13,6 +13,7 @@
 
 typedef struct sph_plate {
     double rect[4];      /* current rectangle (moves with the plate)                 */
+    double rect0[4];     /* the rectangle at the start of the step (sph_plate_contact) */
     int axis;            /* -1 fixed, 0 x, 1 y                                        */
     sph_plate_mode mode;
     double vel;          /* velocity along the axis this step (m/s)                  */
@@ -173,6 +174,7 @@ struct sph_world {
     double *lxx, *lxy, *lyy;   /* kernel-gradient renormalisation (Bonet & Lok 1999) */
     double *gux, *guy, *gvx, *gvy; /* velocity gradient (du/dx, du/dy, dv/dx, dv/dy)  */
     double *xs, *ys;           /* scratch (reordering, shifting displacements)       */
+    double *x0, *y0;           /* positions at the start of the step (after the sort) */
     double *vol;               /* m / rho, set by the neighbour build (rho of then)  */
     double *sa, *sb;           /* scratch per particle for the sweeps (f / rho^2,
                                   the source velocity of the pressure system)        */
@@ -278,6 +280,7 @@ void sph_plate_rigid_velocity(const sph_world *w, int b, double *vx, double *vy)
 void sph_plate_prepare(sph_world *w);
 void sph_plate_move(sph_world *w, int k, double dpos);
 int sph_plate_check_escape(sph_world *w);
+int sph_plate_contact(sph_world *w);
 
 /* physics passes (viscous.c, pressure.c) */
 void sph_viscous_rheology(sph_world *w);

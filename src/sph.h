@@ -189,6 +189,8 @@ typedef struct sph_stats {
     long density_descents;    /* steepest-descent moves so far (density_descent)  */
     int floating_walls;       /* active walls the fluid does not reach, left out of
                                  the last pressure system (pressure.c)            */
+    long wall_contacts;       /* fluid particles held 0.1 dx off a plate so far
+                                 (plates.c, sph_plate_contact)                     */
     double kinetic_energy;    /* sum 1/2 m |u|^2 over fluid               */
     double area;              /* sum m / rho over fluid                   */
     double max_speed;

@@ -35,5 +35,24 @@ T.case("thin channel: flux against the exact Poiseuille flux", function()
   T.close(cur14, 1.0088, 0.005, "curved walls, 14 rows: flux 1.0088 x exact")
   T.checkerror("wall: \"linear\" or \"curved\" expected", "bad wall option", sph.world, { dx = 0.1, wall = "smooth" })
 end)
+-- A drop of 3 x 3 particles (all on the free surface, p = 0) falls onto a plate under
+-- g = 10 with mu = 1e-3: the pressure holds none of its particles off the wall (plates.c,
+-- sph_plate_contact). Measured: without the contact it went through the plate at step 39
+-- (t = 0.188); with it, it lands and rests 0.1 dx above the face (69 steps to t = 0.5,
+-- 231 contacts).
+T.case("a drop of free-surface particles lands on a plate instead of going through it", function()
+  local dx = 0.025
+  local w = sph.world{ dx = dx, rho = 1, gravity = { 0, -10 }, threads = o.threads or 1 }
+  w:fill{ rect = { -1.5 * dx, 0.1, 1.5 * dx, 0.1 + 3 * dx }, material = sph.newtonian{ mu = 1e-3 } }
+  w:plate{ rect = { -0.3, -4 * dx, 0.3, 0 } }
+  local ok, err = pcall(function() w:run{ until_t = 0.5 } end)
+  T.check(ok, "the drop runs to t = 0.5 without an engine error", err)
+  local lo = math.huge
+  for _, y in ipairs(w:field("y")) do lo = math.min(lo, y) end
+  print(string.format("# drop: %d steps, lowest particle %.3f dx above the face, %d contacts", w.steps, lo / dx,
+                      w:stats().wall_contacts))
+  T.check(lo >= 0.1 * dx * (1 - 1e-9), "no particle of the drop closer than 0.1 dx to the face", lo / dx .. " dx")
+  T.check(w:stats().wall_contacts > 0, "the contact held the drop", "no contact counted")
+end)
 
 T.done()
