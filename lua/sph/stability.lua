@@ -34,14 +34,16 @@ end
 -- particle within 1.6 dx: a Re = 1000 start throws a sheet off the upper contact line
 -- whose underside, 3 dx and more inside the sheet's tip, is rightly free surface; 28 such
 -- particles were counted "inside" before the enclosure test). Within dx of a plate's face
--- the outline is the contact line, the outermost body particle within dx of that face, not
--- the rows beside it: the fountain-flow front overhangs the contact line (the free surface
--- leaves the plate at about 30 degrees), so the rows beside a contact-line particle reach
--- 2-4 dx further out, and the contact-line particle itself, rightly free surface (it borders
--- the void wedge between the front and the plate, which the 1.6 dx enclosure test does not
--- resolve), was counted "inside": measured, the thin film's 166 "inside" counts (checks
--- every 5 steps, steps 5-9381) all lay 0.6-0.91 dx from a face, 136 of them within 3 dx of
--- the contact line. The outermost particle of a row not flagged is "missing" when it
+-- the outline is the contact line, the outermost body particle touching that face (within
+-- 0.75 dx of it: a first row sits at 0.5 dx), not the rows beside it. The front of a
+-- squeezed film is a fountain flow: ahead of the contact line its underside runs 0.8-1.3 dx
+-- off the plate over a wedge of void thinner than a particle for 3-4 dx, and the rows
+-- beside reach 2-4 dx further out; the particles bordering that wedge are rightly free
+-- surface, and the 1.6 dx enclosure test does not resolve the wedge. Measured (session 12,
+-- the thin film, checks every 5 steps, two threads): 166 "inside" counts, all 0.6-0.91 dx
+-- from a face at the front, against the rows beside; 30 against the outermost particle
+-- within dx of the face (the underside's tip); none against the touching contact line.
+-- The outermost particle of a row not flagged is "missing" when it
 -- is exposed, i.e. no fluid particle lies in the 90-degree cone facing outwards (+x) within
 -- 1.5 dx of it (a particle with a surface particle diagonally in front of it, 0.8 dx away,
 -- is the second layer, not the edge); rows that touch a plate (within dx of its face: the
@@ -123,17 +125,18 @@ function S.surface_check(w, dx, y_lo, y_hi)
     return nf == 8
   end
   -- next to a plate (within dx of its face) the outline is the contact line: the outermost
-  -- body particle within dx of that face
+  -- body particle touching that face (within 0.75 dx of it; none: the rows' outline)
   local contact = { -math.huge, -math.huge }
   for k = 1, #x do
-    local side = (y[k] < y_lo + dx and 1) or (y[k] > y_hi - dx and 2)
+    local side = (y[k] < y_lo + 0.75 * dx and 1) or (y[k] > y_hi - 0.75 * dx and 2)
     if side and x[k] > contact[side] and body(k) then contact[side] = x[k] end
   end
   local inside, missing, list, mlist = 0, 0, {}, {}
   for k = 1, #x do
     local r = math.floor(y[k] / dx)
     local far = far_of(outer, r)
-    if y[k] < y_lo + dx then far = contact[1] elseif y[k] > y_hi - dx then far = contact[2] end
+    if y[k] < y_lo + dx and contact[1] > -math.huge then far = contact[1]
+    elseif y[k] > y_hi - dx and contact[2] > -math.huge then far = contact[2] end
     if s[k] == 1 and x[k] < far - 3 * dx and enclosed(k) then inside = inside + 1; list[#list + 1] = k end
     if s[k] == 0 and outer[r] and x[k] >= outer[r] and y[k] > y_lo + dx and y[k] < y_hi - dx then
       local exposed = true
