@@ -119,7 +119,17 @@ static sph_amg *slot_for(sph_solver *s, const sph_csr *a) {
  * the old patterns) saves at most the strength and aggregation passes, ~9 % of the
  * viscous setup (4-5 ms a step at 1e5 rows): the products and the smoothers' copies, ~65 %,
  * are redone either way, and the fine matrix's pattern changes every step (the neighbour
- * lists), so A P's pattern cannot be kept. */
+ * lists), so A P's pattern cannot be kept.
+ * Session 12 measured the reuse again, this time through sph_solver_setup_reuse's own rules
+ * (the pair's finest smoothers rebuilt from both components' new values, a rebuild when the
+ * first solve after a reuse takes more than REUSE_SLACK iterations over a fresh one): at
+ * 10^5 particles, 40 steps after 20, the same squeeze 13.9 -> 15.2 viscous iterations a
+ * step and 3,073 / 2,995 -> 2,668 / 2,582 ns per particle-step (-13 %; Newtonian Re = 1:
+ * viscous setup 567 -> 149 ns a particle, 9.18 -> 9.32 iterations, the step -8 %, the plate
+ * force the same to 4 digits). Not kept yet: the round-off it moves changes the thin film's
+ * borderline surface flags (tests/lua/test_stability.lua's stretched sample: 5 flags in
+ * steps 1-3000 on two threads), which that test asserts against; the patch is
+ * sph_amg_reuse taking a2 and a sph_solver_setup_pair_reuse called from viscous.c. */
 #define REUSE_MAX_AGE 20
 #define REUSE_SLACK 1
 #define REUSE_MAX_CHANGE 0.05
