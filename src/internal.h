@@ -174,7 +174,6 @@ struct sph_world {
     double *lxx, *lxy, *lyy;   /* kernel-gradient renormalisation (Bonet & Lok 1999) */
     double *gux, *guy, *gvx, *gvy; /* velocity gradient (du/dx, du/dy, dv/dx, dv/dy)  */
     double *xs, *ys;           /* scratch (reordering, shifting displacements)       */
-    double *x0, *y0;           /* positions at the start of the step (after the sort) */
     double *vol;               /* m / rho, set by the neighbour build (rho of then)  */
     double *sa, *sb;           /* scratch per particle for the sweeps (f / rho^2,
                                   the source velocity of the pressure system)        */
@@ -257,6 +256,7 @@ int sph_world_reserve(sph_world *w, int need);
 /* neighbours.c */
 int sph_neighbours_sort(sph_world *w);
 int sph_neighbours_build(sph_world *w);
+void sph_neighbours_built_position(const sph_world *w, int i, double *x, double *y);
 /* Brute-force neighbours of real particle i among all particles (for tests):
  * writes indices into out (capacity cap), returns count. */
 int sph_neighbours_brute(const sph_world *w, int i, int *out, int cap);
@@ -280,7 +280,7 @@ void sph_plate_rigid_velocity(const sph_world *w, int b, double *vx, double *vy)
 void sph_plate_prepare(sph_world *w);
 void sph_plate_move(sph_world *w, int k, double dpos);
 int sph_plate_check_escape(sph_world *w);
-int sph_plate_contact(sph_world *w);
+void sph_plate_contact(sph_world *w);
 
 /* physics passes (viscous.c, pressure.c) */
 void sph_viscous_rheology(sph_world *w);

@@ -132,6 +132,20 @@ static int bin_all(sph_world *w) {
     return 0;
 }
 
+/* Where real particle i stood when this step's lists were built: its entry in the
+ * cell-ordered copy of the positions (cx, cy), found in its cell's run of cell_items. */
+void sph_neighbours_built_position(const sph_world *w, int i, double *x, double *y) {
+    int c = w->cell_of[i];
+    for (int k = w->cell_start[c]; k < w->cell_start[c + 1]; k++)
+        if (w->cell_items[k] == i) {
+            *x = w->cx[k];
+            *y = w->cy[k];
+            return;
+        }
+    *x = w->x[i]; /* not binned (no lists built yet): where it is */
+    *y = w->y[i];
+}
+
 /* Rows: fluid particles, and wall particles in the 3 x 3 cells around any fluid particle
  * (real or ghost): a superset of the walls within the support of fluid. */
 static void mark_rows(sph_world *w) {

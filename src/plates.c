@@ -188,7 +188,7 @@ void sph_plate_move(sph_world *w, int k, double dpos) {
  * solid-wall cone test tried in session 12 left a sheet particle 0.02 dx from the upper
  * plate's face, overrun at step 1313. In the six suite cases at their defaults no fluid
  * particle came closer than 0.19 dx to a face (0.22-0.31 dx off the free surface), so at
- * 0.1 dx the contact touches none of them. Returns the contacts (w->st.wall_contacts). */
+ * 0.1 dx the contact touches none of them. w->st.wall_contacts counts the contacts. */
 #define CONTACT_MIN 0.1
 
 static void closest_on_rect(const double *R, double x, double y, double *cx, double *cy) {
@@ -196,7 +196,7 @@ static void closest_on_rect(const double *R, double x, double y, double *cx, dou
     *cy = y < R[1] ? R[1] : y > R[3] ? R[3] : y;
 }
 
-int sph_plate_contact(sph_world *w) {
+void sph_plate_contact(sph_world *w) {
     double dmin = CONTACT_MIN * w->dx;
     int contacts = 0;
     for (int i = 0; i < w->n; i++) {
@@ -209,7 +209,10 @@ int sph_plate_contact(sph_world *w) {
             double ex = w->x[i] - cx, ey = w->y[i] - cy, d = hypot(ex, ey);
             if (d >= dmin) continue;
             if (d == 0.0) { /* inside: the side it came from, in the plate's frame */
-                double sx = R[0] - R0[0], sy = R[1] - R0[1], ox = w->x0[i] + sx, oy = w->y0[i] + sy;
+                double ox, oy;
+                sph_neighbours_built_position(w, i, &ox, &oy);
+                ox += R[0] - R0[0];
+                oy += R[1] - R0[1];
                 closest_on_rect(R, ox, oy, &cx, &cy);
                 ex = ox - cx;
                 ey = oy - cy;
@@ -237,7 +240,6 @@ int sph_plate_contact(sph_world *w) {
         }
     }
     w->st.wall_contacts += contacts;
-    return contacts;
 }
 
 int sph_plate_check_escape(sph_world *w) {

@@ -117,7 +117,7 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
     {&w->x,   &w->y,   &w->u,   &w->v,   &w->us,  &w->vs,  &w->ax,       &w->ay,       \
      &w->p,   &w->rho, &w->m,   &w->eta, &w->gd,  &w->divr, &w->xs, &w->ys, &w->lxx,       \
      &w->lxy, &w->lyy, &w->gux, &w->guy, &w->gvx, &w->gvy, &w->phi, &w->psens[0], &w->psens[1], \
-     &w->psens[2], &w->psens[3], &w->dp, &w->vol, &w->sa, &w->sb, &w->cx, &w->cy, &w->ru, &w->rv, &w->x0, &w->y0}
+     &w->psens[2], &w->psens[3], &w->dp, &w->vol, &w->sa, &w->sb, &w->cx, &w->cy, &w->ru, &w->rv}
 #define PARTICLE_INTS(w)                                                                    \
     {&w->kind, &w->mat, &w->id, &w->src, &w->row, &w->perm, &w->iscratch, &w->cell_of,     \
      &w->nb_count, &w->nb_mid}
@@ -411,8 +411,6 @@ int sph_world_step(sph_world *w, double dt) {
     sph_lap(w, SPH_PHASE_SORT);
     if (sph_neighbours_build(w)) return -1;
     mark_surface(w);
-    memcpy(w->x0, w->x, sizeof(double) * (size_t)w->n);
-    memcpy(w->y0, w->y, sizeof(double) * (size_t)w->n);
     for (int k = 0; k < w->nplates; k++) memcpy(w->plates[k].rect0, w->plates[k].rect, sizeof w->plates[k].rect);
     sph_lap(w, SPH_PHASE_NEIGHBOURS);
     sph_viscous_rheology(w);
