@@ -654,7 +654,7 @@ int sph_amg_set_ids(sph_amg *g, int n, const int *row_of, const int *id) {
     return 0;
 }
 
-int sph_amg_reuse(sph_amg *g, const sph_csr *a, const int *row_of, const int *id, int threads) {
+int sph_amg_reuse(sph_amg *g, const sph_csr *a, const sph_csr *a2, const int *row_of, const int *id, int threads) {
     if (g->levels < 2 || !g->rid) return 1;
     int n_old = g->fine_n, n = a->n, nc = g->lev[1].A.n, maxid = -1;
     for (int r = 0; r < n_old; r++)
@@ -706,7 +706,7 @@ int sph_amg_reuse(sph_amg *g, const sph_csr *a, const int *row_of, const int *id
         return -1;
     }
     g->fine_n = n;
-    if (sph_smoother_build(&g->lev[0].S, a, 0, threads)) {
+    if (sph_smoother_build(&g->lev[0].S, a, a2, threads)) {
         g->levels = 0;
         return -1;
     }

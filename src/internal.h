@@ -376,6 +376,11 @@ int sph_solver_second(sph_solver *s, const sph_csr *a, const sph_csr *a2, int th
 /* sph_solver_setup for a followed by sph_solver_second for a2 (AMG), the finest smoother's
  * copies of both made in one pass; the same hierarchy and figures bit for bit. */
 int sph_solver_setup_pair(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_solver kind, int threads);
+/* sph_solver_setup_pair, reusing the hierarchy across steps by the rules of
+ * sph_solver_setup_reuse (row r is particle id[row_of[r]]); the finest level's smoother is
+ * rebuilt from both matrices' values. */
+int sph_solver_setup_pair_reuse(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_solver kind,
+                                int threads, const int *row_of, const int *id);
 /* Two independent systems a1 x1 = b1, a2 x2 = b2 of the same structure (a2 registered by
  * sph_solver_second after the setup for a1), solved side by side: each iteration reads
  * the structure once for both (CG's product and the multigrid cycle). Each system's
@@ -409,7 +414,7 @@ void sph_amg_apply_second(sph_amg *g, const sph_csr *a2, const double *r, double
  * some come and go): the prolongation's rows follow their particles' ids (row r: particle
  * id[row_of[r]]; a new row gets none), the coarse operators stay. 0; 1 when g holds no
  * ids to map from (nothing changed); -1 out of memory (g is then not usable). */
-int sph_amg_reuse(sph_amg *g, const sph_csr *a, const int *row_of, const int *id, int threads);
+int sph_amg_reuse(sph_amg *g, const sph_csr *a, const sph_csr *a2, const int *row_of, const int *id, int threads);
 /* Record the ids of a's rows after a setup (for sph_amg_reuse); -1 out of memory. */
 int sph_amg_set_ids(sph_amg *g, int n, const int *row_of, const int *id);
 /* Exchange the setup-only scratch of two hierarchies (the finest level's merged copy of the

@@ -147,7 +147,7 @@ static int setup(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_
     int rc = 1;
     if (row_of && g->built_for == a && g->levels > 1 && g->age < REUSE_MAX_AGE && g->it_fresh >= 0 &&
         g->it_recent <= g->it_fresh + REUSE_SLACK && fabs((double)(a->n - g->fine_n)) <= REUSE_MAX_CHANGE * g->fine_n) {
-        rc = sph_amg_reuse(g, a, row_of, id, threads);
+        rc = sph_amg_reuse(g, a, a2, row_of, id, threads);
         if (rc == 0) {
             g->age++;
             s->reuses++;
@@ -188,6 +188,11 @@ int sph_solver_setup_reuse(sph_solver *s, const sph_csr *a, sph_linear_solver ki
  * sph_amg_setup_pair: 13.0 -> 8.3 ms for both copies at 10^5 rows). */
 int sph_solver_setup_pair(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_solver kind, int threads) {
     return setup(s, a, a2, kind, threads, 0, 0);
+}
+
+int sph_solver_setup_pair_reuse(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_solver kind,
+                                int threads, const int *row_of, const int *id) {
+    return setup(s, a, a2, kind, threads, row_of, id);
 }
 
 /* The viscous systems take a V-cycle. Their diagonal (rho / dt, scaled by mass) dominates,

@@ -306,14 +306,21 @@ int sph_viscous_implicit(sph_world *w, double dt) {
          * finest level's smoother takes each component's own values (v with u's: 10.2 ->
          * 13.8 iterations a step at 10^5 particles, the images' entries change sign).
          * sph_solver_pcg2 reads the structure once for both in CG's product and the cycle,
-         * each component's iterates as when solved alone (the same figures bit for bit). */
+         * each component's iterates as when solved alone (the same figures bit for bit).
+         * The hierarchy is reused across steps by the pressure solve's rules (solver.c:
+         * rebuilt when the first solve after a reuse takes more than one iteration over a
+         * fresh one, or at age 20), the finest smoother rebuilt from both components'
+         * values each step. Measured (session 13, the paper's Bingham squeeze Bn = 5,
+         * M = 800 at 10^5 particles, one thread, 30 steps after 20, two interleaved rounds):
+         * 14.0 -> 15.3 viscous iterations a step, the step 2,995 / 2,913 -> 2,695 / 2,694 ns
+         * a particle (-8 %; session 12: -13 %); the viscous solve's share 41 -> 34 %. */
         visc_assemble(w, dt, 0);
         sph_csr V2 = *A;
         V2.val = w->vval;
         V2.diag = w->vdiag;
         double *x2 = w->solver.x2;
         for (int r = 0; r < nrows; r++) x2[r] = w->v[w->vrow_of[r]];
-        if (sph_solver_setup_pair(&w->solver, A, &V2, w->par.solver, w->threads))
+        if (sph_solver_setup_pair_reuse(&w->solver, A, &V2, w->par.solver, w->threads, w->vrow_of, w->id))
             return sph_world_fail(w, "viscous solver: multigrid setup failed at step %ld (t = %g, %d unknowns): "
                                   "out of memory or a coarse operator not positive definite", w->steps, w->t, nrows);
         sph_solver_vcycle(&w->solver, A); /* a V-cycle for these systems (solver.c) */
