@@ -313,7 +313,14 @@ int sph_viscous_implicit(sph_world *w, double dt) {
          * values each step. Measured (session 13, the paper's Bingham squeeze Bn = 5,
          * M = 800 at 10^5 particles, one thread, 30 steps after 20, two interleaved rounds):
          * 14.0 -> 15.3 viscous iterations a step, the step 2,995 / 2,913 -> 2,695 / 2,694 ns
-         * a particle (-8 %; session 12: -13 %); the viscous solve's share 41 -> 34 %. */
+         * a particle (-8 %; session 12: -13 %); the viscous solve's share 41 -> 34 %.
+         * Tried, not kept (session 13): the first guess u^n + (u* - u^n) of the step
+         * before, scaled by dt / dt_before (two per-particle arrays permuted with the
+         * particles, used when the step before set them): 15.3 -> 7.8 iterations, the
+         * step 2,695 -> 2,129-2,359 ns (-16 to -21 %), but the Bingham thin film's peak
+         * density error (squeeze_validation, dx = 1/40, bound 1 %) 0.81-0.92 % in eight
+         * runs without it -> 0.97-1.15 % in seven with it (tolerance 1e-6 to 1e-8): steps
+         * where eight density passes leave 1.02-1.12 %. */
         visc_assemble(w, dt, 0);
         sph_csr V2 = *A;
         V2.val = w->vval;
