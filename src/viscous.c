@@ -320,7 +320,10 @@ int sph_viscous_implicit(sph_world *w, double dt) {
          * step 2,695 -> 2,129-2,359 ns (-16 to -21 %), but the Bingham thin film's peak
          * density error (squeeze_validation, dx = 1/40, bound 1 %) 0.81-0.92 % in eight
          * runs without it -> 0.97-1.15 % in seven with it (tolerance 1e-6 to 1e-8): steps
-         * where eight density passes leave 1.02-1.12 %. */
+         * where eight GMRES directions left 1.02-1.12 % (the descent after them now holds
+         * 0.80 %, density.c); with that, the guess and its tolerance at 1e-7, the Newtonian
+         * squeeze V = 1's force error at dx = 1/20 was 0.262 against the test's band
+         * 0.230 +- 0.03 (0.226-0.253 over this session's other round-off changes). */
         visc_assemble(w, dt, 0);
         sph_csr V2 = *A;
         V2.val = w->vval;
