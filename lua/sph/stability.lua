@@ -58,8 +58,11 @@ end
 -- within dx of the face (the underside's tip); none against the touching contact line.
 -- The outermost particle of a row not flagged is "missing" when it
 -- is exposed, i.e. no fluid particle lies in the 90-degree cone facing outwards (+x) within
--- 1.5 dx of it (a particle with a surface particle diagonally in front of it, 0.8 dx away,
--- is the second layer, not the edge); rows that touch a plate (within dx of its face: the
+-- 2.1 dx of it (a particle with a surface particle diagonally in front of it, 0.8 dx away,
+-- is the second layer, not the edge). The radius is beyond the engine's cone (2 dx), as
+-- the enclosure's is inside it: it was 1.5 dx, and with the engine's cone at 2 dx the thin
+-- film (session 13, one thread, h = 0.151) counted a particle of its front missing that had
+-- two surface particles 1.57 dx ahead of it, 17 degrees above and below, 0.94 dx apart; rows that touch a plate (within dx of its face: the
 -- contact line, whose particles have the wall in their support and are held by it, not at
 -- p = 0) are not checked. The half sample's other sides are the symmetry plane and the
 -- plates, with no free surface. Returns the counts inside and missing and the lists of the
@@ -152,7 +155,7 @@ function S.surface_check(w, dx, y_lo, y_hi)
       local exposed = true
       for q = 1, #x do
         local ax, ay = x[q] - x[k], math.abs(y[q] - y[k])
-        if q ~= k and ax > ay and ax * ax + ay * ay < (1.5 * dx) ^ 2 then exposed = false break end
+        if q ~= k and ax > ay and ax * ax + ay * ay < (2.1 * dx) ^ 2 then exposed = false break end
       end
       if exposed then missing = missing + 1; mlist[#mlist + 1] = k end
     end

@@ -60,8 +60,8 @@ T.case("thin film: no surface flags inside the stretched sample (steps 1-3000)",
   -- with the viscous solve's changes of round-off (viscous.c). In session 12 round-off
   -- decided 1-3 borderline flags (a neighbour 1.5-1.6 dx off in the open direction): the
   -- engine's cone now reaches further (2 dx, 1.7 dx to walls) than the check looks
-  -- (1.6 dx), and the check's enclosure is a 60-degree opening test (src/world.c,
-  -- lua/sph/stability.lua).
+  -- (1.6 dx), the check's enclosure is a 60-degree opening test, and its edge test looks
+  -- further (2.1 dx) than the engine's cone (src/world.c, lua/sph/stability.lua).
   local emax, inside, missing = 0, 0, 0
   local function surface()
     if w.steps % 10 == 0 then
