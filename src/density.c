@@ -158,6 +158,12 @@ static int density_descent(sph_world *w, int K) {
     return done;
 }
 static int density_gmres(sph_world *w);
+/* the density descent when the error is above density_limit (and the descent is on) */
+static void descend_if_above(sph_world *w) {
+    double lim = w->par.density_limit;
+    if (lim > 0 && w->st.max_density_error > lim && w->par.density_descent > 0 && w->par.density_relax > 0)
+        w->st.density_descents += density_descent(w, w->par.density_descent);
+}
 #define FALLBACK_USELESS 0.95
 #define FALLBACK_WAIT 10
 #define FALLBACK_WAIT_MAX 640
@@ -172,9 +178,7 @@ int sph_density_correct(sph_world *w) {
      * it is 0.80 % in every one of those runs. */
     if (w->par.density_gmres) {
         if (density_gmres(w)) return -1;
-        double lg = w->par.density_limit;
-        if (lg > 0 && w->st.max_density_error > lg && w->par.density_descent > 0 && w->par.density_relax > 0)
-            w->st.density_descents += density_descent(w, w->par.density_descent);
+        descend_if_above(w);
         return 0;
     }
     int np = w->par.density_passes;
@@ -215,8 +219,7 @@ int sph_density_correct(sph_world *w) {
      * - the headline squeeze: no fallback, its series bit for bit; the other five
      *   stability cases: none (the same steps to the same figures); make test's squeeze
      *   validation: two steps. */
-    if (lim > 0 && w->st.max_density_error > lim && w->par.density_descent > 0 && w->par.density_relax > 0)
-        w->st.density_descents += density_descent(w, w->par.density_descent);
+    descend_if_above(w);
     if (lim > 0 && w->st.max_density_error > lim && w->steps >= w->fallback_after) {
         int passes = w->st.density_passes;
         double alpha = w->st.density_alpha;

@@ -374,13 +374,12 @@ void sph_solver_vcycle(sph_solver *s, const sph_csr *a);
  * a2's system is smoothed with a's values: still a valid preconditioner). */
 int sph_solver_second(sph_solver *s, const sph_csr *a, const sph_csr *a2, int threads);
 /* sph_solver_setup for a followed by sph_solver_second for a2 (AMG), the finest smoother's
- * copies of both made in one pass; the same hierarchy and figures bit for bit. */
-int sph_solver_setup_pair(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_solver kind, int threads);
-/* sph_solver_setup_pair, reusing the hierarchy across steps by the rules of
- * sph_solver_setup_reuse (row r is particle id[row_of[r]]); the finest level's smoother is
- * rebuilt from both matrices' values. */
-int sph_solver_setup_pair_reuse(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_solver kind,
-                                int threads, const int *row_of, const int *id);
+ * copies of both made in one pass; the same hierarchy and figures bit for bit. With row_of
+ * and id (row r is particle id[row_of[r]]) the hierarchy is reused across steps by the
+ * rules of sph_solver_setup_reuse, the finest smoother rebuilt from both matrices' values;
+ * with 0, 0 it is built afresh. */
+int sph_solver_setup_pair(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_solver kind, int threads,
+                          const int *row_of, const int *id);
 /* Two independent systems a1 x1 = b1, a2 x2 = b2 of the same structure (a2 registered by
  * sph_solver_second after the setup for a1), solved side by side: each iteration reads
  * the structure once for both (CG's product and the multigrid cycle). Each system's

@@ -126,10 +126,8 @@ static sph_amg *slot_for(sph_solver *s, const sph_csr *a) {
  * 10^5 particles, 40 steps after 20, the same squeeze 13.9 -> 15.2 viscous iterations a
  * step and 3,073 / 2,995 -> 2,668 / 2,582 ns per particle-step (-13 %; Newtonian Re = 1:
  * viscous setup 567 -> 149 ns a particle, 9.18 -> 9.32 iterations, the step -8 %, the plate
- * force the same to 4 digits). Not kept yet: the round-off it moves changes the thin film's
- * borderline surface flags (tests/lua/test_stability.lua's stretched sample: 5 flags in
- * steps 1-3000 on two threads), which that test asserts against; the patch is
- * sph_amg_reuse taking a2 and a sph_solver_setup_pair_reuse called from viscous.c. */
+ * force the same to 4 digits). Kept since session 13 (viscous.c passes row_of and id to
+ * sph_solver_setup_pair), once the surface flags no longer hung on round-off. */
 #define REUSE_MAX_AGE 20
 #define REUSE_SLACK 1
 #define REUSE_MAX_CHANGE 0.05
@@ -186,12 +184,8 @@ int sph_solver_setup_reuse(sph_solver *s, const sph_csr *a, sph_linear_solver ki
 /* The viscous u and v systems: the second copy of the finest matrix was a pass of its own
  * (sph_solver_second, ~10 % of the viscous setup at 10^5 particles; amg.c,
  * sph_amg_setup_pair: 13.0 -> 8.3 ms for both copies at 10^5 rows). */
-int sph_solver_setup_pair(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_solver kind, int threads) {
-    return setup(s, a, a2, kind, threads, 0, 0);
-}
-
-int sph_solver_setup_pair_reuse(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_solver kind,
-                                int threads, const int *row_of, const int *id) {
+int sph_solver_setup_pair(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_solver kind, int threads,
+                          const int *row_of, const int *id) {
     return setup(s, a, a2, kind, threads, row_of, id);
 }
 

@@ -330,7 +330,7 @@ int sph_viscous_implicit(sph_world *w, double dt) {
         V2.diag = w->vdiag;
         double *x2 = w->solver.x2;
         for (int r = 0; r < nrows; r++) x2[r] = w->v[w->vrow_of[r]];
-        if (sph_solver_setup_pair_reuse(&w->solver, A, &V2, w->par.solver, w->threads, w->vrow_of, w->id))
+        if (sph_solver_setup_pair(&w->solver, A, &V2, w->par.solver, w->threads, w->vrow_of, w->id))
             return sph_world_fail(w, "viscous solver: multigrid setup failed at step %ld (t = %g, %d unknowns): "
                                   "out of memory or a coarse operator not positive definite", w->steps, w->t, nrows);
         sph_solver_vcycle(&w->solver, A); /* a V-cycle for these systems (solver.c) */

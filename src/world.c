@@ -302,7 +302,8 @@ double sph_world_next_dt(sph_world *w) {
  * line, where the sample meets a plate: measured divergences 1.6-2.0). So a particle not
  * in the bulk (div r < 1.85) is also on the surface when nothing lies in front of it
  * (Marrone et al. 2010, simplified): no particle, fluid, wall or image, within a radius
- * (2 dx fluid, 1.7 dx walls: SURFACE_CONE_FLUID below) inside the 30-degree cone around its outward normal n = -sum_j V_j grad_i W_ij / |...|. The
+ * (2 dx fluid, 1.75 dx next to a wall, 1.7 dx walls: SURFACE_CONE_FLUID below) inside
+ * the 30-degree cone around its outward normal n = -sum_j V_j grad_i W_ij / |...|. The
  * normal leans away from the wall, so a 45-degree cone saw the edge's own neighbours next
  * to a plate and missed the particle (measured, Re = 0.01: an exposed edge particle 1.07 dx
  * below the upper plate, div r = 1.80). Flagging such particles raised the Re = 1000
@@ -373,25 +374,21 @@ static int cone_empty(const sph_world *w, int i) {
     if (!(nn * w->h >= SURFACE_NORMAL_MIN)) return 0;
     nx /= nn;
     ny /= nn;
-    double r2f = SURFACE_CONE_FLUID * SURFACE_CONE_FLUID * w->dx * w->dx;
-    double r2w = SURFACE_CONE_WALL * SURFACE_CONE_WALL * w->dx * w->dx;
-    for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) { /* a wall within 2 dx */
-        int j = w->nb_j[k];
-        double dx = w->x[j] - w->x[i], dy = w->y[j] - w->y[i];
-        if (w->kind[j] != SPH_FLUID && dx * dx + dy * dy < 4.0 * w->dx * w->dx) {
-            r2f = SURFACE_CONE_FLUID_WALL * SURFACE_CONE_FLUID_WALL * w->dx * w->dx;
-            break;
-        }
-    }
+    /* one pass: a wall within 2 dx (it sets the fluid radius), the nearest wall and the
+     * nearest fluid particle (spray left out) within 30 degrees of n */
+    double d2 = w->dx * w->dx, fluid2 = INFINITY, wall2 = INFINITY;
+    int nearwall = 0;
     for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
-        int j = w->nb_j[k];
+        int j = w->nb_j[k], fl = w->kind[j] == SPH_FLUID;
         double dx = w->x[j] - w->x[i], dy = w->y[j] - w->y[i], r2 = dx * dx + dy * dy;
-        if (r2 >= (w->kind[j] == SPH_FLUID ? r2f : r2w)) continue;
-        if (w->kind[j] == SPH_FLUID && w->divr[w->src[j]] < SURFACE_SPRAY_DIVR) continue; /* spray */
+        if (!fl && r2 < 4.0 * d2) nearwall = 1;
         double along = dx * nx + dy * ny;
-        if (along > 0.0 && 4.0 * along * along > 3.0 * r2) return 0; /* within 30 degrees of n */
+        if (!(along > 0.0 && 4.0 * along * along > 3.0 * r2)) continue; /* within 30 degrees of n */
+        if (!fl) wall2 = fmin(wall2, r2);
+        else if (w->divr[w->src[j]] >= SURFACE_SPRAY_DIVR) fluid2 = fmin(fluid2, r2);
     }
-    return 1;
+    double rf = nearwall ? SURFACE_CONE_FLUID_WALL : SURFACE_CONE_FLUID;
+    return fluid2 >= rf * rf * d2 && wall2 >= SURFACE_CONE_WALL * SURFACE_CONE_WALL * d2;
 }
 
 static void mark_surface(sph_world *w) {

@@ -42,8 +42,8 @@ end
 -- particle with an opening of up to 90 degrees (two neighbours at the edges of adjacent
 -- sectors), and the wall row, sampled every 0.25 dx, fills directions the engine's wall
 -- particles (dx apart) leave open. Measured (session 13, the thin film to h = 0.15 with the
--- engine's radii at 1.75 / 1.7 dx, -O1, two threads): one particle counted inside by the sectors, 1.9
--- dx below the upper plate, looking through a 74-degree opening between two surface
+-- engine's radii at 1.75 / 1.7 dx, -O1, two threads): one particle counted inside by the
+-- sectors, 1.9 dx below the upper plate, looking through a 74-degree opening between two surface
 -- particles of a void layer under the plate; one 0.74 dx above the lower plate, whose
 -- opening (57 degrees with the wall row to 1.6 dx, 62 to 1.5 dx) faced walls the engine
 -- had beyond 1.7 dx. Within dx of a plate's face
@@ -62,11 +62,12 @@ end
 -- is the second layer, not the edge). The radius is beyond the engine's cone (2 dx), as
 -- the enclosure's is inside it: it was 1.5 dx, and with the engine's cone at 2 dx the thin
 -- film (session 13, one thread, h = 0.151) counted a particle of its front missing that had
--- two surface particles 1.57 dx ahead of it, 17 degrees above and below, 0.94 dx apart; rows that touch a plate (within dx of its face: the
--- contact line, whose particles have the wall in their support and are held by it, not at
--- p = 0) are not checked. The half sample's other sides are the symmetry plane and the
--- plates, with no free surface. Returns the counts inside and missing and the lists of the
--- inside particles' and of the missing ones' indices.
+-- two surface particles 1.57 dx ahead of it, 17 degrees above and below, 0.94 dx apart;
+-- rows that touch a plate (within dx of its face: the contact line, whose particles have
+-- the wall in their support and are held by it, not at p = 0) are not checked. The half
+-- sample's other sides are the symmetry plane and the plates, with no free surface.
+-- Returns the counts inside and missing and the lists of the inside particles' and of the
+-- missing ones' indices.
 -- The sample's outline in rows of height dx: the fields x, y, surface, the particles by
 -- cell (cells, key) and outer[r], the outermost x of row r. The outline is the body's, not
 -- the spray's: a particle with fewer than 3 others within 1.5 dx (a droplet thrown off the

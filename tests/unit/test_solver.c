@@ -290,7 +290,7 @@ int main(void) {
               s1.iterations, same2 ? "same" : "differs", res[1].iterations, s2.iterations);
         /* the pair set up in one pass (sph_solver_setup_pair, viscous.c): the same figures */
         double *z1 = calloc((size_t)n, sizeof(double)), *z2 = calloc((size_t)n, sizeof(double));
-        rc = sph_solver_setup_pair(&sv, &a, &a2, SPH_SOLVER_AMG, th);
+        rc = sph_solver_setup_pair(&sv, &a, &a2, SPH_SOLVER_AMG, th, 0, 0);
         sph_solve_result rp[2];
         sph_solver_pcg2(&sv, &a, &a2, b1, b2, z1, z2, 1e-8, 500, th, rp);
         snprintf(nm, sizeof nm, "setup_pair (%d thread(s)): bit for bit setup + second", th);
