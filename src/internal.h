@@ -219,6 +219,9 @@ struct sph_world {
     double *vval, *vdiag, *vrhs; /* the v component's values, diagonal and rhs      */
     int vval_cap;
     int *vrow_of;              /* unknown -> particle                               */
+    double *vdu, *vdv;         /* the last viscous solve's increment u* - u^n (its  */
+    double vg_dt;              /* first guess, viscous.c), its dt, and the particle  */
+    int vg_n;                  /* count it was set for (0: none)                     */
     int vrows_cap;
 
     /* pressure system */

@@ -269,6 +269,32 @@ static void visc_assemble(sph_world *w, double dt, int comp) {
     sph_lap(w, SPH_PHASE_VISC_ASSEMBLY);
 }
 
+/* The first guess of the viscous solve: u^n + (u* - u^n) of the step before, scaled by
+ * dt / dt_before (the velocity's change over a step varies slowly from one step to the
+ * next), where the step before set it for the same particles (w->vg_n: the count then;
+ * particles are only ever added; the arrays are permuted with the particles); else u^n
+ * (visc_assemble). comp 0: u into x, 1: v into x. */
+static void visc_guess(const sph_world *w, double dt, int comp, double *x) {
+    if (w->vg_n != w->n || !(w->vg_dt > 0)) return;
+    const double *d = comp ? w->vdv : w->vdu;
+    double s = dt / w->vg_dt;
+    int nrows = w->V.n;
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+    for (int r = 0; r < nrows; r++) x[r] += s * d[w->vrow_of[r]];
+}
+
+/* Keeps this solve's increment for the next step's guess (the caller then sets vg_dt, vg_n). */
+static void visc_keep(sph_world *w, int comp, const double *x) {
+    double *d = comp ? w->vdv : w->vdu;
+    const double *u = comp ? w->v : w->u;
+    int nrows = w->V.n;
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+    for (int r = 0; r < nrows; r++) {
+        int i = w->vrow_of[r];
+        d[i] = x[r] - u[i];
+    }
+}
+
 int sph_viscous_implicit(sph_world *w, double dt) {
     int n = w->n, nrows = 0;
     /* one unknown per fluid particle; row[] is borrowed (the pressure system rebuilds it) */
@@ -314,22 +340,21 @@ int sph_viscous_implicit(sph_world *w, double dt) {
          * M = 800 at 10^5 particles, one thread, 30 steps after 20, two interleaved rounds):
          * 14.0 -> 15.3 viscous iterations a step, the step 2,995 / 2,913 -> 2,695 / 2,694 ns
          * a particle (-8 %; session 12: -13 %); the viscous solve's share 41 -> 34 %.
-         * Tried, not kept (session 13): the first guess u^n + (u* - u^n) of the step
-         * before, scaled by dt / dt_before (two per-particle arrays permuted with the
-         * particles, used when the step before set them): 15.3 -> 7.8 iterations, the
-         * step 2,695 -> 2,129-2,359 ns (-16 to -21 %), but the Bingham thin film's peak
-         * density error (squeeze_validation, dx = 1/40, bound 1 %) 0.81-0.92 % in eight
-         * runs without it -> 0.97-1.15 % in seven with it (tolerance 1e-6 to 1e-8): steps
-         * where eight GMRES directions left 1.02-1.12 % (the descent after them now holds
-         * 0.80 %, density.c); with that, the guess and its tolerance at 1e-7, the Newtonian
-         * squeeze V = 1's force error at dx = 1/20 was 0.262 against the test's band
-         * 0.230 +- 0.03 (0.226-0.253 over this session's other round-off changes). */
+         * The first guess (session 14): u^n + (u* - u^n) of the step before, scaled by
+         * dt / dt_before (visc_guess): 15.3 -> 7.8 viscous iterations a step at 10^5
+         * particles, the step -12 to -16 % (interleaved runs, one thread). Session 13 held
+         * it back on the Newtonian squeeze V = 1's force error at dx = 1/20 (0.262 then,
+         * with other round-off); measured with the final code: 0.2463-0.2473 with the guess
+         * (tolerances 1e-6 to 1e-8) against 0.242-0.253 without (one and two threads, the
+         * same tolerances): within the case's round-off spread. */
         visc_assemble(w, dt, 0);
         sph_csr V2 = *A;
         V2.val = w->vval;
         V2.diag = w->vdiag;
         double *x2 = w->solver.x2;
         for (int r = 0; r < nrows; r++) x2[r] = w->v[w->vrow_of[r]];
+        visc_guess(w, dt, 0, w->vsol);
+        visc_guess(w, dt, 1, x2);
         if (sph_solver_setup_pair(&w->solver, A, &V2, w->par.solver, w->threads, w->vrow_of, w->id))
             return sph_world_fail(w, "viscous solver: multigrid setup failed at step %ld (t = %g, %d unknowns): "
                                   "out of memory or a coarse operator not positive definite", w->steps, w->t, nrows);
@@ -351,10 +376,13 @@ int sph_viscous_implicit(sph_world *w, double dt) {
             w->us[w->vrow_of[r]] = w->vsol[r];
             w->vs[w->vrow_of[r]] = x2[r];
         }
+        visc_keep(w, 0, w->vsol);
+        visc_keep(w, 1, x2);
         sph_lap(w, SPH_PHASE_VISC_SOLVE);
     }
     for (int comp = 0; comp < 2 && w->par.solver != SPH_SOLVER_AMG; comp++) { /* Jacobi: in turn */
         visc_assemble(w, dt, comp);
+        visc_guess(w, dt, comp, w->vsol);
         if (comp == 0 && sph_solver_setup(&w->solver, A, w->par.solver, w->threads))
             return sph_world_fail(w, "viscous solver: setup failed at step %ld (%d unknowns)", w->steps, nrows);
         sph_solve_result res =
@@ -369,10 +397,13 @@ int sph_viscous_implicit(sph_world *w, double dt) {
         if (res.residual > resid) resid = res.residual;
         double *dst = comp ? w->vs : w->us;
         for (int r = 0; r < nrows; r++) dst[w->vrow_of[r]] = w->vsol[r];
+        visc_keep(w, comp, w->vsol);
         sph_lap(w, SPH_PHASE_VISC_SOLVE);
     }
     w->st.visc_iterations = iters;
     w->st.visc_residual = resid;
+    w->vg_dt = dt;
+    w->vg_n = n;
 
     /* walls keep their plate's velocity; the viscous force on each plate from u* */
     /* then the pressure predictor's term taken back: the projection applies the whole

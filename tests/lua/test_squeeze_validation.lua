@@ -74,8 +74,13 @@ T.case("Newtonian squeeze at constant velocity against lubrication", function()
   -- 0.2162 (0.16) under make check's -O1 sanitizer build; the references below are their
   -- middle. The predictor removes much of the force's time-step error: 0.231 in 1727
   -- steps, 0.218 at dt_max = 1e-4 (6723 steps), where without it 0.286 in 1741 and 0.243.
-  T.close(rs[1].error, 0.230, 0.03, "Newtonian squeeze V = 1, dx = 1/20: error within 0.03 of 0.230")
-  T.close(rs[2].error, 0.217, 0.03, "Newtonian squeeze V = 1, dx = 1/30: error within 0.03 of 0.217")
+  -- Session 14 (the engine since: the surface cone, the density descent, the viscous
+  -- first guess): re-measured over round-off variants (one and two threads, solver
+  -- tolerance 1e-6 / 1e-7 / 1e-8, with and without the viscous guess): 0.242-0.253 at
+  -- 1/20, 0.227-0.238 at 1/30; the references are their middles (the old ones, 0.230 and
+  -- 0.217, had drifted to within 0.01 of their bands' edge).
+  T.close(rs[1].error, 0.247, 0.03, "Newtonian squeeze V = 1, dx = 1/20: error within 0.03 of 0.247")
+  T.close(rs[2].error, 0.233, 0.03, "Newtonian squeeze V = 1, dx = 1/30: error within 0.03 of 0.233")
   T.close(order, 0.15, 0.5, "Newtonian squeeze V = 1: observed order within 0.5 of 0.15")
   T.below(rs[2].peak_density_error, 0.03, "Newtonian squeeze V = 1, dx = 1/30: peak density error under 3 %")
 end)
