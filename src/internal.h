@@ -202,6 +202,7 @@ struct sph_world {
     int *nb_j;
     double *nb_gx, *nb_gy;     /* grad_i W_ij                                       */
     double *nb_f;              /* r_ij . grad_i W_ij / (r_ij^2 + eps^2)             */
+    double *nb_w;              /* W_ij (the pressure predictor's Shepard average)   */
     long nb_cap;
     int *nb_count;
     int *nb_mid;               /* row i: fluid (and fluid ghost) neighbours in

@@ -168,7 +168,7 @@ static int opt_choice(lua_State *L, const char *key, const char *first, const ch
 static int l_world(lua_State *L) {
     static const char *const keys[] = {"dx", "h", "rho", "gravity", "viscosity", "shifting",
                                        "cfl", "cvisc", "cforce", "dt_max", "periodic", "symmetry",
-                                       "threads", "tol", "max_iter", "surface", "density_relax",
+                                       "threads", "tol", "visc_tol", "max_iter", "surface", "density_relax",
                                        "density_tol", "density_passes", "density_limit", "density_diffusion", "density_solve_tol", "pressure_predictor", "solver", "density_correction", "pressure_gradient", "wall", "projection_passes", "density_descent", 0};
     luaL_checktype(L, 1, LUA_TTABLE);
     sph_lua_opt_only(L, 1, "world", keys);
@@ -185,6 +185,7 @@ static int l_world(lua_State *L) {
     p.dt_max = sph_lua_opt_number(L, 1, "world", "dt_max", 0);
     p.threads = (int)sph_lua_opt_number(L, 1, "world", "threads", 0);
     p.tol = sph_lua_opt_number(L, 1, "world", "tol", p.tol);
+    p.visc_tol = sph_lua_opt_number(L, 1, "world", "visc_tol", p.visc_tol);
     p.max_iter = (int)sph_lua_opt_number(L, 1, "world", "max_iter", p.max_iter);
     p.surface_div = sph_lua_opt_number(L, 1, "world", "surface", p.surface_div);
     p.density_relax = sph_lua_opt_number(L, 1, "world", "density_relax", p.density_relax);

@@ -279,7 +279,9 @@ int sph_neighbours_build(sph_world *w) {
         if (b) w->nb_gy = b;
         double *f = realloc(w->nb_f, sizeof(double) * (size_t)cap);
         if (f) w->nb_f = f;
-        if (!j || !a || !b || !f) return sph_world_fail(w, "out of memory (%ld neighbour pairs)", total);
+        double *wv = realloc(w->nb_w, sizeof(double) * (size_t)cap);
+        if (wv) w->nb_w = wv;
+        if (!j || !a || !b || !f || !wv) return sph_world_fail(w, "out of memory (%ld neighbour pairs)", total);
         w->nb_cap = cap;
     }
 
@@ -289,6 +291,7 @@ int sph_neighbours_build(sph_world *w) {
     for (int k = 0; k < nt; k++)
         if (items[k] < n) kof[items[k]] = k;
     double kc = -5.0 * 7.0 / (478.0 * SPH_PI * h * h * h), hinv = 1.0 / h; /* as in sph_kernel_deriv */
+    double kv = 7.0 / (478.0 * SPH_PI * h * h);                             /* as in sph_kernel_value */
     int cap = w->cand_cap;
 #pragma omp parallel num_threads(threads)
     {
@@ -335,7 +338,7 @@ int sph_neighbours_build(sph_world *w) {
             w->nb_mid[i] = s + nf;
             int m = nf + nw;
             int *nj = w->nb_j + s;
-            double *ngx = w->nb_gx + s, *ngy = w->nb_gy + s, *nf_ = w->nb_f + s;
+            double *ngx = w->nb_gx + s, *ngy = w->nb_gy + s, *nf_ = w->nb_f + s, *nw_ = w->nb_w + s;
             double divr = 0.0, mxx = 0.0, mxy = 0.0, myy = 0.0;
 #pragma omp simd reduction(+ : divr, mxx, mxy, myy)
             for (int q = 0; q < m; q++) {
@@ -352,6 +355,8 @@ int sph_neighbours_build(sph_world *w) {
                 ngx[q] = g * dx;
                 ngy[q] = g * dy;
                 nf_[q] = dw * r2 * inv;
+                nw_[q] = kv * (sph_kernel_pos5(3.0 - sq) - 6.0 * sph_kernel_pos5(2.0 - sq) +
+                               15.0 * sph_kernel_pos5(1.0 - sq));
                 double v = vol[j];
                 divr -= v * r * dw;
                 mxx -= v * g * dx * dx;

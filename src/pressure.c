@@ -722,17 +722,17 @@ static void shepard(sph_world *w, double *p, double *pt) {
             pt[i] = w->kind[i] == SPH_FLUID ? 0.0 : p[i];
             continue;
         }
-        double xi = w->x[i], yi = w->y[i], s = w->vol[i] * w0, sp = s * p[i];
+        double s = w->vol[i] * w0, sp = s * p[i];
         const int *nj = w->nb_j, *src = w->src;
-        const double *x = w->x, *y = w->y, *vol = w->vol;
+        const double *vol = w->vol, *nw = w->nb_w;
         const unsigned char *act = w->active;
         int k0 = w->nb_start[i], k1 = w->nb_start[i + 1];
 #pragma omp simd reduction(+ : s, sp)
         for (int k = k0; k < k1; k++) {
             int j = nj[k];
-            double dx = xi - x[j], dy = yi - y[j];
-            /* wall particles outside the pressure system hold p = 0, not a pressure: out */
-            double c = act[src[j]] * vol[j] * sph_kernel_value(sqrt(dx * dx + dy * dy), h);
+            /* wall particles outside the pressure system hold p = 0, not a pressure: out;
+             * W_ij from the neighbour build (the positions have not moved since) */
+            double c = act[src[j]] * vol[j] * nw[k];
             s += c;
             sp += c * p[j];
         }

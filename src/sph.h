@@ -55,7 +55,9 @@ typedef struct sph_params {
     int symmetry[2];       /* mirror plane x = sym_at[0] / y = sym_at[1]           */
     double sym_at[2];
     int threads;           /* 0: all cores                                         */
-    double tol;            /* pressure solver: relative residual                   */
+    double tol;            /* pressure solver: relative residual; default 1e-6     */
+    double visc_tol;       /* implicit viscous solve: relative residual; default
+                              1e-6 (README, Speed: what looser costs)                */
     sph_linear_solver solver; /* CG preconditioner: SPH_SOLVER_AMG (default) or JACOBI */
     int max_iter;          /* pressure solver: iteration limit                     */
     double surface_div;    /* free surface where div r < surface_div (2D: 2 full)  */

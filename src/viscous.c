@@ -360,7 +360,7 @@ int sph_viscous_implicit(sph_world *w, double dt) {
                                   "out of memory or a coarse operator not positive definite", w->steps, w->t, nrows);
         sph_solver_vcycle(&w->solver, A); /* a V-cycle for these systems (solver.c) */
         sph_solve_result res[2];
-        sph_solver_pcg2(&w->solver, A, &V2, w->vb, w->vrhs, w->vsol, x2, w->par.tol, w->par.max_iter, w->threads,
+        sph_solver_pcg2(&w->solver, A, &V2, w->vb, w->vrhs, w->vsol, x2, w->par.visc_tol, w->par.max_iter, w->threads,
                         res);
         for (int comp = 0; comp < 2; comp++) {
             if (!res[comp].converged)
@@ -368,7 +368,7 @@ int sph_viscous_implicit(sph_world *w, double dt) {
                                       "viscous solver (%s) did not converge at step %ld (t = %g, dt = %g): "
                                       "relative residual %.3g after %d iterations (tolerance %g, %d unknowns)",
                                       comp ? "v" : "u", w->steps, w->t, dt, res[comp].residual,
-                                      res[comp].iterations, w->par.tol, nrows);
+                                      res[comp].iterations, w->par.visc_tol, nrows);
             iters += res[comp].iterations;
             if (res[comp].residual > resid) resid = res[comp].residual;
         }
@@ -386,13 +386,13 @@ int sph_viscous_implicit(sph_world *w, double dt) {
         if (comp == 0 && sph_solver_setup(&w->solver, A, w->par.solver, w->threads))
             return sph_world_fail(w, "viscous solver: setup failed at step %ld (%d unknowns)", w->steps, nrows);
         sph_solve_result res =
-            sph_solver_pcg(&w->solver, A, w->vb, w->vsol, w->par.tol, w->par.max_iter, w->threads);
+            sph_solver_pcg(&w->solver, A, w->vb, w->vsol, w->par.visc_tol, w->par.max_iter, w->threads);
         if (!res.converged)
             return sph_world_fail(w,
                                   "viscous solver (%s) did not converge at step %ld (t = %g, dt = %g): "
                                   "relative residual %.3g after %d iterations (tolerance %g, %d unknowns)",
                                   comp ? "v" : "u", w->steps, w->t, dt, res.residual, res.iterations,
-                                  w->par.tol, nrows);
+                                  w->par.visc_tol, nrows);
         iters += res.iterations;
         if (res.residual > resid) resid = res.residual;
         double *dst = comp ? w->vs : w->us;

@@ -21,6 +21,7 @@ void sph_params_default(sph_params *p) {
     p->cvisc = 0.125;
     p->cforce = 0.25;
     p->tol = 1e-6;
+    p->visc_tol = 1e-6;
     p->solver = SPH_SOLVER_AMG;
     p->max_iter = 5000;
     p->surface_div = 1.5;
@@ -59,7 +60,7 @@ static const char *check_params(const sph_params *p) {
         "solver must be SPH_SOLVER_AMG or SPH_SOLVER_JACOBI", "density_limit must be in [0, 1) (0: none)", "density_diffusion must be in [0, 0.25]", "density_solve_tol must be in (0, 1)",
         "pressure_predictor must be in [0, 1]", "density_gmres must be 0 or 1",
         "pressure_gradient must be SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE", "wall_curved must be 0 or 1",
-        "projection_passes must be in [0, 10]", "density_descent must be in [0, 100]"};
+        "projection_passes must be in [0, 10]", "density_descent must be in [0, 100]", "visc_tol must be in (0, 1)"};
     if (!(p->dx > 0 && isfinite(p->dx))) return bad[0];
     if (!(p->h >= 0 && isfinite(p->h))) return bad[1];
     if (!(p->rho0 > 0 && isfinite(p->rho0))) return bad[2];
@@ -85,6 +86,7 @@ static const char *check_params(const sph_params *p) {
     if (p->wall_curved != 0 && p->wall_curved != 1) return bad[20];
     if (!(p->projection_passes >= 0 && p->projection_passes <= 10)) return bad[21];
     if (!(p->density_descent >= 0 && p->density_descent <= 100)) return bad[22];
+    if (!(p->visc_tol > 0 && p->visc_tol < 1)) return bad[23];
     return 0;
 }
 
@@ -129,7 +131,7 @@ void sph_world_free(sph_world *w) {
     for (size_t k = 0; k < sizeof d / sizeof *d; k++) free(*d[k]);
     int **ip[] = PARTICLE_INTS(w);
     for (size_t k = 0; k < sizeof ip / sizeof *ip; k++) free(*ip[k]);
-    double **o[] = {&w->nb_gx, &w->nb_gy, &w->nb_f, &w->b, &w->sol, &w->bk[0], &w->bk[1], &w->bk[2],
+    double **o[] = {&w->nb_gx, &w->nb_gy, &w->nb_f, &w->nb_w, &w->b, &w->sol, &w->bk[0], &w->bk[1], &w->bk[2],
                     &w->bk[3], &w->solk[0], &w->solk[1], &w->solk[2], &w->solk[3], &w->rq, &w->vb, &w->vsol, &w->vval, &w->vdiag, &w->vrhs};
     for (size_t k = 0; k < sizeof o / sizeof *o; k++) free(*o[k]);
     int **oi[] = {&w->cell_start, &w->cell_items, &w->nb_start, &w->nb_j, &w->row_of, &w->vrow_of};
