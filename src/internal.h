@@ -223,6 +223,9 @@ struct sph_world {
     double *vdu, *vdv;         /* the last viscous solve's increment u* - u^n (its  */
     double vg_dt;              /* first guess, viscous.c), its dt, and the particle  */
     int vg_n;                  /* count it was set for (0: none)                     */
+    double *pdu;               /* the last pressure solve's change of p (its first   */
+    double pg_dt;              /* guess, pressure.c), its dt and particle count      */
+    int pg_n;
     int vrows_cap;
 
     /* pressure system */

@@ -542,6 +542,12 @@ int sph_pressure_solve(sph_world *w, double dt) {
     /* the velocity each particle has in the source term (sa, sb), once per particle */
     int ntot = n + w->ng;
     double *svx = w->sa, *svy = w->sb;
+    /* The first guess of the flow's solve: p^n (less the loaded plates' parts) plus the
+     * change of the last solve scaled by dt / dt_before (pdu, kept below; permuted with the
+     * particles; 0 where a particle was no unknown), where the last solve was for the same
+     * particles. Measured (session 14, the paper's squeeze at 10^5 particles, one thread):
+     * pressure-type iterations a step 8.7 -> 7.4, the step -5 %. */
+    double pg = w->pg_n == n && w->pg_dt > 0 ? dt / w->pg_dt : 0.0;
 #pragma omp parallel for schedule(static) num_threads(threads)
     for (int j = 0; j < ntot; j++) src_velocity(w, j, &svx[j], &svy[j]);
     if (sph_csr_reserve(A, nrows, A->start[nrows]) || sph_solver_reserve(&w->solver, nrows))
@@ -602,7 +608,7 @@ int sph_pressure_solve(sph_world *w, double dt) {
             p0 -= w->plates[loaded[q]].vel * w->psens[q][i];
             w->solk[q][r] = w->psens[q][i];
         }
-        w->sol[r] = p0;
+        w->sol[r] = p0 + pg * w->pdu[i];
     }
     sph_lap(w, SPH_PHASE_PRESSURE_ASSEMBLY);
 
@@ -640,6 +646,15 @@ int sph_pressure_solve(sph_world *w, double dt) {
 
     /* plates: pressure forces, loaded plates' velocities */
     double F0[SPH_MAX_PLATES], Fk[SPH_MAX_LOADED][SPH_MAX_PLATES];
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (int i = 0; i < n; i++) { /* the change this solve made, for the next one's guess */
+        int r = w->row[i];
+        double p0 = w->p[i];
+        for (int q = 0; q < K; q++) p0 -= w->plates[loaded[q]].vel * w->psens[q][i];
+        w->pdu[i] = r >= 0 ? w->sol[r] - p0 : 0.0;
+    }
+    w->pg_dt = dt;
+    w->pg_n = n;
     sph_pressure_scatter(w, w->sol, w->p);
     plate_pressure_force(w, w->p, F0);
     if (K > 0) {
