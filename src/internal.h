@@ -223,9 +223,12 @@ struct sph_world {
     double *vdu, *vdv;         /* the last viscous solve's increment u* - u^n (its  */
     double vg_dt;              /* first guess, viscous.c), its dt, and the particle  */
     int vg_n;                  /* count it was set for (0: none)                     */
-    double *pdu;               /* the last pressure solve's change of p (its first   */
-    double pg_dt;              /* guess, pressure.c), its dt and particle count      */
-    int pg_n;
+    double *vdu1, *vdv1;       /* the same of the solve before                       */
+    double vg_dt1;
+    int vg_n1;
+    double *pdu, *pdu1;        /* the last two pressure solves' changes of p (their  */
+    double pg_dt, pg_dt1;      /* first guess, pressure.c), dt and particle counts   */
+    int pg_n, pg_n1;
     int vrows_cap;
 
     /* pressure system */

@@ -72,7 +72,7 @@ static void permute(sph_world *w, const int *perm) {
     int n = w->n;
     double *dscratch = w->xs;
     double *darr[] = {w->x, w->y, w->u, w->v, w->ax, w->ay, w->p, w->rho, w->m,
-                      w->eta, w->gd, w->phi, w->psens[0], w->psens[1], w->psens[2], w->psens[3], w->vdu, w->vdv, w->pdu};
+                      w->eta, w->gd, w->phi, w->psens[0], w->psens[1], w->psens[2], w->psens[3], w->vdu, w->vdv, w->pdu, w->vdu1, w->vdv1, w->pdu1};
     int *iscratch = w->iscratch;
     int *iarr[] = {w->kind, w->mat, w->id};
     int nd = (int)(sizeof darr / sizeof *darr), ni = (int)(sizeof iarr / sizeof *iarr);

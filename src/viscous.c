@@ -269,23 +269,41 @@ static void visc_assemble(sph_world *w, double dt, int comp) {
     sph_lap(w, SPH_PHASE_VISC_ASSEMBLY);
 }
 
-/* The first guess of the viscous solve: u^n + (u* - u^n) of the step before, scaled by
- * dt / dt_before (the velocity's change over a step varies slowly from one step to the
- * next), where the step before set it for the same particles (w->vg_n: the count then;
- * particles are only ever added; the arrays are permuted with the particles); else u^n
- * (visc_assemble). comp 0: u into x, 1: v into x. */
+/* The first guess of the viscous solve: u^n plus the change u* - u^n extrapolated from the
+ * last two steps' (the change per unit time, dt_n the step before's, dt_{n-1} the one
+ * before that's: (2 (u* - u)_n / dt_n - (u* - u)_{n-1} / dt_{n-1}) dt), where both were
+ * solved for the same particles (w->vg_n, vg_n1: the counts then; particles are only ever
+ * added; the arrays are permuted with the particles); from one step (its change scaled by
+ * dt / dt_n) where only the last was; else u^n (visc_assemble). comp 0: u into x, 1: v
+ * into x. Measured (session 14, the paper's squeeze at 10^5 particles, one thread): viscous
+ * iterations a step 15.3 from u^n, 7.8 with the one-step guess, 5.1 with two. */
 static void visc_guess(const sph_world *w, double dt, int comp, double *x) {
     if (w->vg_n != w->n || !(w->vg_dt > 0)) return;
-    const double *d = comp ? w->vdv : w->vdu;
+    const double *d = comp ? w->vdv : w->vdu, *d1 = comp ? w->vdv1 : w->vdu1;
     double s = dt / w->vg_dt;
     int nrows = w->V.n;
+    if (w->vg_n1 == w->n && w->vg_dt1 > 0) {
+        double s1 = dt / w->vg_dt1;
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+        for (int r = 0; r < nrows; r++) {
+            int i = w->vrow_of[r];
+            x[r] += 2.0 * s * d[i] - s1 * d1[i];
+        }
+        return;
+    }
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int r = 0; r < nrows; r++) x[r] += s * d[w->vrow_of[r]];
 }
 
-/* Keeps this solve's increment for the next step's guess (the caller then sets vg_dt, vg_n). */
+/* Keeps this solve's change for the next steps' guesses: the last one becomes the one
+ * before (a swap), this one the last (the caller then moves vg_dt, vg_n along). Every fluid
+ * particle is a row, so a row's entries are always this step's or the one before's. */
 static void visc_keep(sph_world *w, int comp, const double *x) {
-    double *d = comp ? w->vdv : w->vdu;
+    double **dp = comp ? &w->vdv : &w->vdu, **dp1 = comp ? &w->vdv1 : &w->vdu1;
+    double *t = *dp;
+    *dp = *dp1;
+    *dp1 = t;
+    double *d = *dp;
     const double *u = comp ? w->v : w->u;
     int nrows = w->V.n;
 #pragma omp parallel for schedule(static) num_threads(w->threads)
@@ -340,9 +358,10 @@ int sph_viscous_implicit(sph_world *w, double dt) {
          * M = 800 at 10^5 particles, one thread, 30 steps after 20, two interleaved rounds):
          * 14.0 -> 15.3 viscous iterations a step, the step 2,995 / 2,913 -> 2,695 / 2,694 ns
          * a particle (-8 %; session 12: -13 %); the viscous solve's share 41 -> 34 %.
-         * The first guess (session 14): u^n + (u* - u^n) of the step before, scaled by
-         * dt / dt_before (visc_guess): 15.3 -> 7.8 viscous iterations a step at 10^5
-         * particles, the step -12 to -16 % (interleaved runs, one thread). Session 13 held
+         * The first guess (session 14): u^n + (u* - u^n) extrapolated from the steps
+         * before (visc_guess): 15.3 -> 7.8 (one step) -> 5.1 (two) viscous iterations a
+         * step at 10^5 particles, the step -12 to -16 % for the first (interleaved runs,
+         * one thread). Session 13 held
          * it back on the Newtonian squeeze V = 1's force error at dx = 1/20 (0.262 then,
          * with other round-off); measured with the final code: 0.2463-0.2473 with the guess
          * (tolerances 1e-6 to 1e-8) against 0.242-0.253 without (one and two threads, the
@@ -402,6 +421,8 @@ int sph_viscous_implicit(sph_world *w, double dt) {
     }
     w->st.visc_iterations = iters;
     w->st.visc_residual = resid;
+    w->vg_dt1 = w->vg_dt;
+    w->vg_n1 = w->vg_n;
     w->vg_dt = dt;
     w->vg_n = n;
 

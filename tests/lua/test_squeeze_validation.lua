@@ -106,6 +106,12 @@ T.case("Bingham squeeze in the thin-film regime against thin-film theory", funct
   -- 1.0117 and 0.9960 (0.0582, 0.0239) with -O1. The mean ratio is the stable figure (the
   -- L2 error carries the force's step-to-step noise): within 0.03 of each build's middle;
   -- the errors under 0.08. With the defaults this film blows up (squeeze_validation.lua).
+  -- Session 14: the L2 error's spread over round-off variants of one code (1 and 2
+  -- threads, pressure tolerance 1e-6 / 1e-7 / 1e-8, dx = 1/30 and 1/30 +- 1e-10; 18 runs)
+  -- at 1/30: 0.020-0.073 (mean 0.052) with session 13's code, 0.022-0.081 (mean 0.051)
+  -- with session 14's solver guesses; 0.08 is at that distribution's tail, so a change of
+  -- round-off alone can cross it (one variant in 18 did), while the mean ratio stays
+  -- within 1.00-1.03.
   T.close(rs[1].mean_ratio, 1.012, 0.03, "Bingham thin film, dx = 1/30: force within 0.03 of 1.012 x thin-film theory")
   T.close(rs[2].mean_ratio, 0.997, 0.03, "Bingham thin film, dx = 1/40: force within 0.03 of 0.997 x thin-film theory")
   T.below(rs[1].error, 0.08, "Bingham thin film, dx = 1/30: error under 0.08")
