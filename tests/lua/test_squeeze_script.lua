@@ -42,5 +42,13 @@ T.case("headline squeeze script, a thin gap", function()
   T.check(text:find("is 4.0 particles across", 1, true) ~= nil, "squeeze.lua notes a gap a few particles across", text)
 end)
 
+T.case("headline squeeze script, the solver options reach the engine", function()
+  local text, code = run("mode=velocity Re=10 Bn=0.5 M=100 dx=0.05 t_end=0.005 tol=1e-7 visc_tol=1e-7")
+  T.check(code == 0, "squeeze.lua runs with tol=1e-7 visc_tol=1e-7", text)
+  text, code = run("mode=velocity Re=10 Bn=0.5 M=100 dx=0.05 t_end=0.005 visc_tol=2")
+  T.check(code == 1 and text:find("visc_tol must be in (0, 1)", 1, true) ~= nil,
+          "squeeze.lua with visc_tol=2 exits 1 naming visc_tol", text)
+end)
+
 os.execute("rm -rf '" .. dir .. "'")
 T.done()
