@@ -207,6 +207,101 @@ static int reserve_candidates(sph_world *w) {
     return 0;
 }
 
+/* The candidates' count of row i: particles within the support (i itself excluded). */
+static SPH_CLONES int count_row(const sph_world *w, int i, double r2max) {
+    const double *cx = w->cx, *cy = w->cy;
+    double xi = w->x[i], yi = w->y[i], cd = 0.0;
+    int k0[3], k1[3], nr = candidate_runs(w, i, k0, k1);
+    for (int r = 0; r < nr; r++) {
+        int a = k0[r], b = k1[r];
+#pragma omp simd reduction(+ : cd)
+        for (int k = a; k < b; k++) {
+            double dx = xi - cx[k], dy = yi - cy[k];
+            cd += dx * dx + dy * dy < r2max ? 1.0 : 0.0;
+        }
+    }
+    return (int)cd - 1; /* i itself is among its candidates, at r = 0 */
+}
+
+/* Row i's list (see sph_neighbours_build): ki its place in the cell order; cls, kf_, kw_
+ * the thread's scratch. */
+static SPH_CLONES void fill_row(sph_world *w, int i, int ki, int *cls, int *kf_, int *kw_, double r2max, double kc,
+                                double kv, double hinv, double eps2) {
+    const double *cx = w->cx, *cy = w->cy, *vol = w->vol;
+    const unsigned char *cfl = w->cellfl;
+    const int *items = w->cell_items;
+    double xi = w->x[i], yi = w->y[i];
+    int k0[3], k1[3], nr = candidate_runs(w, i, k0, k1);
+    int nc = 0;
+    for (int r = 0; r < nr; r++) {
+        int a = k0[r], b = k1[r];
+        int *cr = cls + nc - a;
+#pragma omp simd
+        for (int k = a; k < b; k++) {
+            double dx = xi - cx[k], dy = yi - cy[k];
+            cr[k] = dx * dx + dy * dy < r2max;
+        }
+        if (ki >= a && ki < b) cr[ki] = 0; /* i itself */
+        nc += b - a;
+    }
+    /* compaction (branch-free: a kept candidate is not predictable) */
+    int nf = 0, nw = 0, q0 = 0;
+    for (int r = 0; r < nr; r++) {
+        int a = k0[r], b = k1[r];
+        const int *cr = cls + q0 - a;
+        for (int k = a; k < b; k++) {
+            int in = cr[k], fl = cfl[k];
+            kf_[nf] = k;
+            kw_[nw] = k;
+            nf += in & fl;
+            nw += in & !fl;
+        }
+        q0 += b - a;
+    }
+    for (int q = 0; q < nw; q++) kf_[nf + q] = kw_[q]; /* walls after the fluid */
+    int s = w->nb_start[i];
+    w->nb_mid[i] = s + nf;
+    int m = nf + nw;
+    int *nj = w->nb_j + s;
+    double *ngx = w->nb_gx + s, *ngy = w->nb_gy + s, *nf_ = w->nb_f + s, *nw_ = w->nb_w + s;
+    double divr = 0.0, mxx = 0.0, mxy = 0.0, myy = 0.0;
+#pragma omp simd reduction(+ : divr, mxx, mxy, myy)
+    for (int q = 0; q < m; q++) {
+        int k = kf_[q];
+        double dx = xi - cx[k], dy = yi - cy[k], r2 = dx * dx + dy * dy;
+        double r = sqrt(r2), sq = r * hinv;
+        double dw = kc * (sph_kernel_pos4(3.0 - sq) - 6.0 * sph_kernel_pos4(2.0 - sq) +
+                          15.0 * sph_kernel_pos4(1.0 - sq));
+        /* one division for g = dW/dr / r and F = r dW/dr / (r^2 + eps^2) */
+        double re = r2 + eps2, inv = 1.0 / (r > 0.0 ? r * re : 1.0);
+        double g = r > 0.0 ? dw * re * inv : 0.0;
+        int j = items[k];
+        nj[q] = j;
+        ngx[q] = g * dx;
+        ngy[q] = g * dy;
+        nf_[q] = dw * r2 * inv;
+        nw_[q] = kv * (sph_kernel_pos5(3.0 - sq) - 6.0 * sph_kernel_pos5(2.0 - sq) +
+                       15.0 * sph_kernel_pos5(1.0 - sq));
+        double v = vol[j];
+        divr -= v * r * dw;
+        mxx -= v * g * dx * dx;
+        mxy -= v * g * dx * dy;
+        myy -= v * g * dy * dy;
+    }
+    w->divr[i] = divr;
+    /* L = M^-1, M = sum_j V_j (x_j - x_i) (x) grad_i W_ij (= I in the bulk). Where the
+     * support is too truncated for M to be trusted, L = I. */
+    double det = mxx * myy - mxy * mxy;
+    if (det > 0.25 && mxx > 0 && myy > 0) {
+        w->lxx[i] = myy / det;
+        w->lxy[i] = -mxy / det;
+        w->lyy[i] = mxx / det;
+    } else {
+        w->lxx[i] = w->lyy[i] = 1.0;
+        w->lxy[i] = 0.0;
+    }
+}
+
 /* Neighbour lists of the rows (fluid and active walls). Positions are first copied in cell
  * order (cx, cy), so that the distance tests run over contiguous arrays (vectorised). A
  * count pass sizes the lists (no allocation once they are large enough); the fill pass
@@ -249,23 +344,7 @@ int sph_neighbours_build(sph_world *w) {
     }
 
 #pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
-    for (int i = 0; i < n; i++) {
-        int c = 0;
-        if (w->active[i]) {
-            double xi = w->x[i], yi = w->y[i], cd = 0.0;
-            int k0[3], k1[3], nr = candidate_runs(w, i, k0, k1);
-            for (int r = 0; r < nr; r++) {
-                int a = k0[r], b = k1[r];
-#pragma omp simd reduction(+ : cd)
-                for (int k = a; k < b; k++) {
-                    double dx = xi - cx[k], dy = yi - cy[k];
-                    cd += dx * dx + dy * dy < r2max ? 1.0 : 0.0;
-                }
-            }
-            c = (int)cd - 1; /* i itself is among its candidates, at r = 0 */
-        }
-        cnt[i] = c;
-    }
+    for (int i = 0; i < n; i++) cnt[i] = w->active[i] ? count_row(w, i, r2max) : 0;
     w->nb_start[0] = 0;
     for (int i = 0; i < n; i++) w->nb_start[i + 1] = w->nb_start[i] + cnt[i];
     long total = w->nb_start[n];
@@ -305,76 +384,7 @@ int sph_neighbours_build(sph_world *w) {
                 w->nb_mid[i] = w->nb_start[i];
                 continue;
             }
-            double xi = w->x[i], yi = w->y[i];
-            int k0[3], k1[3], nr = candidate_runs(w, i, k0, k1);
-            int nc = 0, ki = kof[i];
-            for (int r = 0; r < nr; r++) {
-                int a = k0[r], b = k1[r];
-                int *cr = cls + nc - a;
-#pragma omp simd
-                for (int k = a; k < b; k++) {
-                    double dx = xi - cx[k], dy = yi - cy[k];
-                    cr[k] = dx * dx + dy * dy < r2max;
-                }
-                if (ki >= a && ki < b) cr[ki] = 0; /* i itself */
-                nc += b - a;
-            }
-            /* compaction (branch-free: a kept candidate is not predictable) */
-            int nf = 0, nw = 0, q0 = 0;
-            for (int r = 0; r < nr; r++) {
-                int a = k0[r], b = k1[r];
-                const int *cr = cls + q0 - a;
-                for (int k = a; k < b; k++) {
-                    int in = cr[k], fl = cfl[k];
-                    kf_[nf] = k;
-                    kw_[nw] = k;
-                    nf += in & fl;
-                    nw += in & !fl;
-                }
-                q0 += b - a;
-            }
-            for (int q = 0; q < nw; q++) kf_[nf + q] = kw_[q]; /* walls after the fluid */
-            int s = w->nb_start[i];
-            w->nb_mid[i] = s + nf;
-            int m = nf + nw;
-            int *nj = w->nb_j + s;
-            double *ngx = w->nb_gx + s, *ngy = w->nb_gy + s, *nf_ = w->nb_f + s, *nw_ = w->nb_w + s;
-            double divr = 0.0, mxx = 0.0, mxy = 0.0, myy = 0.0;
-#pragma omp simd reduction(+ : divr, mxx, mxy, myy)
-            for (int q = 0; q < m; q++) {
-                int k = kf_[q];
-                double dx = xi - cx[k], dy = yi - cy[k], r2 = dx * dx + dy * dy;
-                double r = sqrt(r2), sq = r * hinv;
-                double dw = kc * (sph_kernel_pos4(3.0 - sq) - 6.0 * sph_kernel_pos4(2.0 - sq) +
-                                  15.0 * sph_kernel_pos4(1.0 - sq));
-                /* one division for g = dW/dr / r and F = r dW/dr / (r^2 + eps^2) */
-                double re = r2 + eps2, inv = 1.0 / (r > 0.0 ? r * re : 1.0);
-                double g = r > 0.0 ? dw * re * inv : 0.0;
-                int j = items[k];
-                nj[q] = j;
-                ngx[q] = g * dx;
-                ngy[q] = g * dy;
-                nf_[q] = dw * r2 * inv;
-                nw_[q] = kv * (sph_kernel_pos5(3.0 - sq) - 6.0 * sph_kernel_pos5(2.0 - sq) +
-                               15.0 * sph_kernel_pos5(1.0 - sq));
-                double v = vol[j];
-                divr -= v * r * dw;
-                mxx -= v * g * dx * dx;
-                mxy -= v * g * dx * dy;
-                myy -= v * g * dy * dy;
-            }
-            w->divr[i] = divr;
-            /* L = M^-1, M = sum_j V_j (x_j - x_i) (x) grad_i W_ij (= I in the bulk). Where the
-             * support is too truncated for M to be trusted, L = I. */
-            double det = mxx * myy - mxy * mxy;
-            if (det > 0.25 && mxx > 0 && myy > 0) {
-                w->lxx[i] = myy / det;
-                w->lxy[i] = -mxy / det;
-                w->lyy[i] = mxx / det;
-            } else {
-                w->lxx[i] = w->lyy[i] = 1.0;
-                w->lxy[i] = 0.0;
-            }
+            fill_row(w, i, kof[i], cls, kf_, kw_, r2max, kc, kv, hinv, eps2);
         }
     }
     return 0;

@@ -28,6 +28,35 @@
 
 #include <math.h>
 
+/* grad C_i (cx, cy) and the plain kernel sum sum_j V_j grad W_ij (gx, gy) of particle i, W
+ * at the particles' current positions */
+static SPH_CLONES void concentration(const sph_world *w, int i, const double *vol, double wdx, double R, double *ocx,
+                                     double *ocy, double *ogx, double *ogy) {
+    double h = w->h, kw = 7.0 / (478.0 * SPH_PI * h * h); /* as in sph_kernel_value */
+    double cx = 0.0, cy = 0.0, gx = 0.0, gy = 0.0, xi = w->x[i], yi = w->y[i];
+    const int *nj = w->nb_j;
+    const double *x = w->x, *y = w->y, *ngx = w->nb_gx, *ngy = w->nb_gy;
+    int k0 = w->nb_start[i], k1 = w->nb_start[i + 1];
+#pragma omp simd reduction(+ : cx, cy, gx, gy)
+    for (int k = k0; k < k1; k++) {
+        int j = nj[k];
+        double ddx = xi - x[j], ddy = yi - y[j];
+        double sq = sqrt(ddx * ddx + ddy * ddy) / h;
+        double q = kw * (sph_kernel_pos5(3.0 - sq) - 6.0 * sph_kernel_pos5(2.0 - sq) +
+                         15.0 * sph_kernel_pos5(1.0 - sq)) * wdx;
+        q *= q;
+        double v = vol[j] * (1.0 + R * q * q);
+        cx += v * ngx[k];
+        cy += v * ngy[k];
+        gx += vol[j] * ngx[k];
+        gy += vol[j] * ngy[k];
+    }
+    *ocx = cx;
+    *ocy = cy;
+    *ogx = gx;
+    *ogy = gy;
+}
+
 void sph_shifting_apply(sph_world *w, double dt) {
     int n = w->n;
     double A = w->par.shifting, h = w->h, umax = 0.0, near = w->par.surface_div + 0.3;
@@ -51,28 +80,11 @@ void sph_shifting_apply(sph_world *w, double dt) {
     double *vol = w->sa;
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int j = 0; j < nt; j++) vol[j] = w->m[j] / w->rho[j];
-    double kw = 7.0 / (478.0 * SPH_PI * h * h); /* as in sph_kernel_value */
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) continue;
-        double cx = 0.0, cy = 0.0, gx = 0.0, gy = 0.0, xi = w->x[i], yi = w->y[i];
-        const int *nj = w->nb_j;
-        const double *x = w->x, *y = w->y, *ngx = w->nb_gx, *ngy = w->nb_gy;
-        int k0 = w->nb_start[i], k1 = w->nb_start[i + 1];
-#pragma omp simd reduction(+ : cx, cy, gx, gy)
-        for (int k = k0; k < k1; k++) {
-            int j = nj[k];
-            double ddx = xi - x[j], ddy = yi - y[j];
-            double sq = sqrt(ddx * ddx + ddy * ddy) / h;
-            double q = kw * (sph_kernel_pos5(3.0 - sq) - 6.0 * sph_kernel_pos5(2.0 - sq) +
-                             15.0 * sph_kernel_pos5(1.0 - sq)) * wdx;
-            q *= q;
-            double v = vol[j] * (1.0 + R * q * q);
-            cx += v * ngx[k];
-            cy += v * ngy[k];
-            gx += vol[j] * ngx[k];
-            gy += vol[j] * ngy[k];
-        }
+        double cx, cy, gx, gy;
+        concentration(w, i, vol, wdx, R, &cx, &cy, &gx, &gy);
         double sx = -D * cx, sy = -D * cy;
         if (w->divr[i] < near) { /* tangential only: n = sum V grad W / |...| */
             double c = hypot(gx, gy);
