@@ -167,6 +167,15 @@ typedef struct sph_solver {
     long solves;                   /* sph_solver_pcg calls on a non-empty system */
 } sph_solver;
 
+/* A solve's first guess (solver.c): the changes its unknown took in the last two solves,
+ * per particle (permuted with the particles), with their dt and the particle count then
+ * (0: none). */
+typedef struct sph_guess {
+    double *d, *d1; /* the last solve's change, the one before's */
+    double dt, dt1;
+    int n, n1;
+} sph_guess;
+
 struct sph_world {
     sph_params par;
     double h, dx, eps2, mass0;
@@ -233,15 +242,8 @@ struct sph_world {
     double *vval, *vdiag, *vrhs; /* the v component's values, diagonal and rhs      */
     int vval_cap;
     int *vrow_of;              /* unknown -> particle                               */
-    double *vdu, *vdv;         /* the last viscous solve's increment u* - u^n (its  */
-    double vg_dt;              /* first guess, viscous.c), its dt, and the particle  */
-    int vg_n;                  /* count it was set for (0: none)                     */
-    double *vdu1, *vdv1;       /* the same of the solve before                       */
-    double vg_dt1;
-    int vg_n1;
-    double *pdu, *pdu1;        /* the last two pressure solves' changes of p (their  */
-    double pg_dt, pg_dt1;      /* first guess, pressure.c), dt and particle counts   */
-    int pg_n, pg_n1;
+    sph_guess gu, gv;          /* the viscous solves' first guesses (u, v)           */
+    sph_guess gp;              /* the pressure solve's                               */
     int vrows_cap;
 
     /* pressure system */
@@ -403,6 +405,14 @@ int sph_solver_second(sph_solver *s, const sph_csr *a, const sph_csr *a2, int th
  * with 0, 0 it is built afresh. */
 int sph_solver_setup_pair(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_solver kind, int threads,
                           const int *row_of, const int *id);
+/* First guesses (the viscous and pressure solves): the change of the next solve taken as
+ * a d - b d1, extrapolated per unit time from the last two solves' changes ((2 d / dt_n -
+ * d1 / dt_{n-1}) dt), from the last one alone (b = 0) when only it was for the same n
+ * particles; 0 and 0 when neither (then the guess is the solve's plain start).
+ * sph_guess_keep makes room for this solve's change (returned: the array to fill; the
+ * last one becomes the one before). */
+void sph_guess_weights(const sph_guess *g, int n, double dt, double *a, double *b);
+double *sph_guess_keep(sph_guess *g, int n, double dt);
 /* Two independent systems a1 x1 = b1, a2 x2 = b2 of the same structure (a2 registered by
  * sph_solver_second after the setup for a1), solved side by side: each iteration reads
  * the structure once for both (CG's product and the multigrid cycle). Each system's

@@ -543,14 +543,13 @@ int sph_pressure_solve(sph_world *w, double dt) {
     int ntot = n + w->ng;
     double *svx = w->sa, *svy = w->sb;
     /* The first guess of the flow's solve: p^n (less the loaded plates' parts) plus the
-     * change extrapolated from the last two solves' (pdu, pdu1, kept below; permuted with
-     * the particles; 0 where a particle was no unknown) as the viscous guess (viscous.c),
-     * from the last one alone where only it was for the same particles. Measured (session
+     * change extrapolated from the last two solves' (w->gp, kept below; 0 where a particle
+     * was no unknown; sph_guess_weights), as the viscous guess. Measured (session
      * 14, the paper's squeeze at 10^5 particles, one thread): pressure-type iterations a
      * step 8.7 from p^n, 7.4 with the one-step guess, 6.7 with two. */
-    double pg = w->pg_n == n && w->pg_dt > 0 ? dt / w->pg_dt : 0.0;
-    double pg1 = pg > 0 && w->pg_n1 == n && w->pg_dt1 > 0 ? dt / w->pg_dt1 : 0.0;
-    if (pg1 > 0) pg *= 2.0;
+    double pg, pg1;
+    sph_guess_weights(&w->gp, n, dt, &pg, &pg1);
+    const double *gd = w->gp.d, *gd1 = w->gp.d1;
 #pragma omp parallel for schedule(static) num_threads(threads)
     for (int j = 0; j < ntot; j++) src_velocity(w, j, &svx[j], &svy[j]);
     if (sph_csr_reserve(A, nrows, A->start[nrows]) || sph_solver_reserve(&w->solver, nrows))
@@ -611,7 +610,7 @@ int sph_pressure_solve(sph_world *w, double dt) {
             p0 -= w->plates[loaded[q]].vel * w->psens[q][i];
             w->solk[q][r] = w->psens[q][i];
         }
-        w->sol[r] = p0 + pg * w->pdu[i] - pg1 * w->pdu1[i];
+        w->sol[r] = p0 + pg * gd[i] - pg1 * gd1[i];
     }
     sph_lap(w, SPH_PHASE_PRESSURE_ASSEMBLY);
 
@@ -649,20 +648,14 @@ int sph_pressure_solve(sph_world *w, double dt) {
 
     /* plates: pressure forces, loaded plates' velocities */
     double F0[SPH_MAX_PLATES], Fk[SPH_MAX_LOADED][SPH_MAX_PLATES];
-    double *pt = w->pdu1;
-    w->pdu1 = w->pdu;
-    w->pdu = pt;
-    w->pg_dt1 = w->pg_dt;
-    w->pg_n1 = w->pg_n;
+    double *chg = sph_guess_keep(&w->gp, n, dt);
 #pragma omp parallel for schedule(static) num_threads(threads)
     for (int i = 0; i < n; i++) { /* the change this solve made, for the next one's guess */
         int r = w->row[i];
         double p0 = w->p[i];
         for (int q = 0; q < K; q++) p0 -= w->plates[loaded[q]].vel * w->psens[q][i];
-        w->pdu[i] = r >= 0 ? w->sol[r] - p0 : 0.0;
+        chg[i] = r >= 0 ? w->sol[r] - p0 : 0.0;
     }
-    w->pg_dt = dt;
-    w->pg_n = n;
     sph_pressure_scatter(w, w->sol, w->p);
     plate_pressure_force(w, w->p, F0);
     if (K > 0) {

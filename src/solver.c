@@ -54,6 +54,27 @@ void sph_csr_matvec(const sph_csr *a, const double *x, double *y, int threads) {
     }
 }
 
+void sph_guess_weights(const sph_guess *g, int n, double dt, double *a, double *b) {
+    *a = *b = 0.0;
+    if (g->n != n || !(g->dt > 0)) return;
+    *a = dt / g->dt;
+    if (g->n1 == n && g->dt1 > 0) {
+        *a *= 2.0;
+        *b = dt / g->dt1;
+    }
+}
+
+double *sph_guess_keep(sph_guess *g, int n, double dt) {
+    double *t = g->d1;
+    g->d1 = g->d;
+    g->d = t;
+    g->dt1 = g->dt;
+    g->n1 = g->n;
+    g->dt = dt;
+    g->n = n;
+    return g->d;
+}
+
 int sph_solver_reserve(sph_solver *s, int n) {
     if (n <= s->cap) return 0;
     int cap = n + n / 4 + 16;

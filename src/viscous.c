@@ -269,41 +269,28 @@ static void visc_assemble(sph_world *w, double dt, int comp) {
     sph_lap(w, SPH_PHASE_VISC_ASSEMBLY);
 }
 
-/* The first guess of the viscous solve: u^n plus the change u* - u^n extrapolated from the
- * last two steps' (the change per unit time, dt_n the step before's, dt_{n-1} the one
- * before that's: (2 (u* - u)_n / dt_n - (u* - u)_{n-1} / dt_{n-1}) dt), where both were
- * solved for the same particles (w->vg_n, vg_n1: the counts then; particles are only ever
- * added; the arrays are permuted with the particles); from one step (its change scaled by
- * dt / dt_n) where only the last was; else u^n (visc_assemble). comp 0: u into x, 1: v
- * into x. Measured (session 14, the paper's squeeze at 10^5 particles, one thread): viscous
- * iterations a step 15.3 from u^n, 7.8 with the one-step guess, 5.1 with two. */
+/* The first guess of the viscous solve (sph_guess_weights): u^n plus the change u* - u^n
+ * extrapolated from the last two steps' (w->gu, w->gv; every fluid particle is a row, so a
+ * row's entries are always from those steps); else u^n (visc_assemble). comp 0: u into x,
+ * 1: v into x. Measured (session 14, the paper's squeeze at 10^5 particles, one thread):
+ * viscous iterations a step 15.3 from u^n, 7.8 from the last step's change, 5.1 from two. */
 static void visc_guess(const sph_world *w, double dt, int comp, double *x) {
-    if (w->vg_n != w->n || !(w->vg_dt > 0)) return;
-    const double *d = comp ? w->vdv : w->vdu, *d1 = comp ? w->vdv1 : w->vdu1;
-    double s = dt / w->vg_dt;
+    const sph_guess *g = comp ? &w->gv : &w->gu;
+    double a, b;
+    sph_guess_weights(g, w->n, dt, &a, &b);
+    if (a == 0.0) return;
+    const double *d = g->d, *d1 = g->d1;
     int nrows = w->V.n;
-    if (w->vg_n1 == w->n && w->vg_dt1 > 0) {
-        double s1 = dt / w->vg_dt1;
 #pragma omp parallel for schedule(static) num_threads(w->threads)
-        for (int r = 0; r < nrows; r++) {
-            int i = w->vrow_of[r];
-            x[r] += 2.0 * s * d[i] - s1 * d1[i];
-        }
-        return;
+    for (int r = 0; r < nrows; r++) {
+        int i = w->vrow_of[r];
+        x[r] += a * d[i] - b * d1[i];
     }
-#pragma omp parallel for schedule(static) num_threads(w->threads)
-    for (int r = 0; r < nrows; r++) x[r] += s * d[w->vrow_of[r]];
 }
 
-/* Keeps this solve's change for the next steps' guesses: the last one becomes the one
- * before (a swap), this one the last (the caller then moves vg_dt, vg_n along). Every fluid
- * particle is a row, so a row's entries are always this step's or the one before's. */
-static void visc_keep(sph_world *w, int comp, const double *x) {
-    double **dp = comp ? &w->vdv : &w->vdu, **dp1 = comp ? &w->vdv1 : &w->vdu1;
-    double *t = *dp;
-    *dp = *dp1;
-    *dp1 = t;
-    double *d = *dp;
+/* Keeps this solve's change u* - u^n for the next steps' guesses. */
+static void visc_keep(sph_world *w, double dt, int comp, const double *x) {
+    double *d = sph_guess_keep(comp ? &w->gv : &w->gu, w->n, dt);
     const double *u = comp ? w->v : w->u;
     int nrows = w->V.n;
 #pragma omp parallel for schedule(static) num_threads(w->threads)
@@ -358,14 +345,12 @@ int sph_viscous_implicit(sph_world *w, double dt) {
          * M = 800 at 10^5 particles, one thread, 30 steps after 20, two interleaved rounds):
          * 14.0 -> 15.3 viscous iterations a step, the step 2,995 / 2,913 -> 2,695 / 2,694 ns
          * a particle (-8 %; session 12: -13 %); the viscous solve's share 41 -> 34 %.
-         * The first guess (session 14): u^n + (u* - u^n) extrapolated from the steps
-         * before (visc_guess): 15.3 -> 7.8 (one step) -> 5.1 (two) viscous iterations a
-         * step at 10^5 particles, the step -12 to -16 % for the first (interleaved runs,
-         * one thread). Session 13 held
-         * it back on the Newtonian squeeze V = 1's force error at dx = 1/20 (0.262 then,
-         * with other round-off); measured with the final code: 0.2463-0.2473 with the guess
-         * (tolerances 1e-6 to 1e-8) against 0.242-0.253 without (one and two threads, the
-         * same tolerances): within the case's round-off spread. */
+         * The first guess (session 14; visc_guess): 15.3 -> 7.8 (one step) -> 5.1 (two)
+         * viscous iterations a step at 10^5 particles. Session 13 held it back on the
+         * Newtonian squeeze V = 1's force error at dx = 1/20 (0.262 then, with other
+         * round-off); measured in session 14 over one and two threads and tolerances 1e-6 to
+         * 1e-8: 0.242-0.253 without a guess, 0.244-0.250 with the one-step guess, 0.239-0.245
+         * with the two-step one: within the case's round-off spread. */
         visc_assemble(w, dt, 0);
         sph_csr V2 = *A;
         V2.val = w->vval;
@@ -395,8 +380,8 @@ int sph_viscous_implicit(sph_world *w, double dt) {
             w->us[w->vrow_of[r]] = w->vsol[r];
             w->vs[w->vrow_of[r]] = x2[r];
         }
-        visc_keep(w, 0, w->vsol);
-        visc_keep(w, 1, x2);
+        visc_keep(w, dt, 0, w->vsol);
+        visc_keep(w, dt, 1, x2);
         sph_lap(w, SPH_PHASE_VISC_SOLVE);
     }
     for (int comp = 0; comp < 2 && w->par.solver != SPH_SOLVER_AMG; comp++) { /* Jacobi: in turn */
@@ -416,15 +401,11 @@ int sph_viscous_implicit(sph_world *w, double dt) {
         if (res.residual > resid) resid = res.residual;
         double *dst = comp ? w->vs : w->us;
         for (int r = 0; r < nrows; r++) dst[w->vrow_of[r]] = w->vsol[r];
-        visc_keep(w, comp, w->vsol);
+        visc_keep(w, dt, comp, w->vsol);
         sph_lap(w, SPH_PHASE_VISC_SOLVE);
     }
     w->st.visc_iterations = iters;
     w->st.visc_residual = resid;
-    w->vg_dt1 = w->vg_dt;
-    w->vg_n1 = w->vg_n;
-    w->vg_dt = dt;
-    w->vg_n = n;
 
     /* walls keep their plate's velocity; the viscous force on each plate from u* */
     /* then the pressure predictor's term taken back: the projection applies the whole

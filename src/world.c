@@ -120,7 +120,7 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
      &w->p,   &w->rho, &w->m,   &w->eta, &w->gd,  &w->divr, &w->xs, &w->ys, &w->lxx,       \
      &w->lxy, &w->lyy, &w->gux, &w->guy, &w->gvx, &w->gvy, &w->phi, &w->psens[0], &w->psens[1], \
      &w->psens[2], &w->psens[3], &w->dp, &w->vol, &w->sa, &w->sb, &w->cx, &w->cy, &w->ru, &w->rv, \
-     &w->vdu, &w->vdv, &w->pdu, &w->vdu1, &w->vdv1, &w->pdu1}
+     &w->gu.d, &w->gu.d1, &w->gv.d, &w->gv.d1, &w->gp.d, &w->gp.d1}
 #define PARTICLE_INTS(w)                                                                    \
     {&w->kind, &w->mat, &w->id, &w->src, &w->row, &w->perm, &w->iscratch, &w->cell_of,     \
      &w->nb_count, &w->nb_mid}
