@@ -1,19 +1,27 @@
 -- Benchmark (not a test): cost of the step and the share of each of its phases from 10^3 to
 -- 10^6 particles, on 1 and 2 threads. The paper's constant-velocity squeeze (Bn = 5,
 -- M = 800, Re = 1, upper plate at V = -1, half sample with a symmetry plane) at a ladder of
--- resolutions dx = 1/40 .. 1/1400; for each, a few untimed steps (the impulsive start),
--- then `steps` timed steps of a fixed dt = dt_dx * dx (w:step(dt): every run of a
--- resolution takes the same steps), timed by the engine's clock (w:stats().wall_time and
--- its per-phase split w:stats().phases).
+-- resolutions dx = 1/40 .. 1/1400; for each, `warmup` untimed steps at the engine's adaptive
+-- step (the impulsive start), then `steps` timed steps, timed by the engine's clock
+-- (w:stats().wall_time and its per-phase split w:stats().phases). The timed steps' dt, one
+-- rule for every size:
+--   dt = 0.025 (default): a fixed dt = 0.025 dx (dx/40; w:step(dt): every run of a
+--     resolution takes the same steps, and every size the same plate travel a step);
+--   dt = adaptive: the engine's own step control (w:step()), what a run pays; each size
+--     takes its own dt, printed as dt/dx (the plate's travel a step in dx, V = 1).
+-- The column ns/dx is the cost of moving the plate by one dx: ns a particle-step over dt/dx.
+-- (Until session 15 the fixed dt was min(dt_dx dx, the warm-up's last adaptive step): the
+-- 10^6 rows then ran at a smaller dt than the others, 6.9e-6 against dx/40 = 1.8e-5 in one
+-- run.)
 -- Run by scripts/bench.sh (`make bench`); by hand:
 --   build/sph scripts/bench_scaling.lua [max_n=120000] [runs=3] [steps=..] [warmup=3]
---                                       [threads=1,2] [dx=0.0025] [out=out/bench]
+--                                       [dt=0.025|adaptive] [threads=1,2] [dx=0.0025] [out=out/bench]
 --                                       [density_limit=0.008] [density_solve_tol=1e-3]
 -- density_limit is passed to sph.world (0: no passes beyond density_passes; the 10^6 row's
 -- three timed steps follow the impulsive start closely, where the default's extra passes
 -- double the pressure-type iterations: 24.0 -> 51.3 a step).
 -- max_n caps the particle count (fluid + wall) of the ladder (default 1.2e5; the 10^6 row is
--- opt-in: max_n=1e6, not run yet, an hour or more with the Jacobi-preconditioned solvers); dx= runs one
+-- opt-in: max_n=1e6, several minutes a run); dx= runs one
 -- resolution only. Runs are interleaved (run 1 of every thread count, then run 2, ...) and
 -- each row is the median over runs; above 3e4 particles one run (the steps are long).
 -- Columns: particles (fluid + wall, ghosts not counted), ns per particle-step (the whole
@@ -28,7 +36,11 @@ local o = ... or {}
 
 local max_n = o.max_n or 1.2e5
 local warmup = math.floor(o.warmup or 3)
-local dt_dx = o.dt_dx or 0.025 -- dt = dx / 40: about the adaptive step of this case (density-error limited)
+local adaptive = o.dt == "adaptive"
+local dt_dx = tonumber(o.dt or o.dt_dx or 0.025) -- dt = dx / 40 (the adaptive step of this case saw-tooths around 0.02-0.075 dx at 10^5)
+if not adaptive and not (dt_dx and dt_dx > 0) then
+  error("bench_scaling: dt must be 'adaptive' or a positive number (dt / dx), got '" .. tostring(o.dt) .. "'")
+end
 local outdir = o.out or "out/bench"
 local threads = {}
 for t in tostring(o.threads or "1,2"):gmatch("%d+") do threads[#threads + 1] = math.floor(tonumber(t)) end
@@ -66,16 +78,16 @@ end
 local function one_run(r, nthreads, steps)
   local w, top = build(r.k, nthreads)
   -- the warm-up takes the adaptive step (the impulsive start: a fixed dx/40 from rest put a
-  -- fluid particle through the upper plate at step 4 at dx = 1/1000), the timed steps a
-  -- fixed dt: the smaller of dt_dx * dx and the last adaptive step
+  -- fluid particle through the upper plate at step 4 at dx = 1/1000), the timed steps the
+  -- rule's (above)
   for _ = 1, warmup do w:step() end
-  local dt = math.min(dt_dx * r.dx, w.dt)
+  local dt = not adaptive and dt_dx * r.dx or nil
   local s0 = w:stats()
   for _ = 1, steps do w:step(dt) end
   local s1 = w:stats()
   local n = s1.steps - s0.steps
   local wall = s1.wall_time - s0.wall_time
-  local res = { ns = 1e9 * wall / (n * r.particles), wall = wall,
+  local res = { ns = 1e9 * wall / (n * r.particles), wall = wall, dtdx = (s1.t - s0.t) / (n * r.dx),
                 piter = (s1.solver_iterations_total - s0.solver_iterations_total) / n,
                 viter = (s1.visc_iterations_total - s0.visc_iterations_total) / n,
                 phases = {}, neighbours = s1.neighbours }
@@ -86,16 +98,16 @@ local function one_run(r, nthreads, steps)
 end
 
 -- the table: printed row by row as the rungs finish (a long run shows its progress)
-local head = string.format("%-7s %9s %3s %10s %7s %7s %6s", "dx", "particles", "thr", "ns/pt-step",
-  "p-it/st", "v-it/st", "spread")
+local head = string.format("%-7s %9s %3s %10s %6s %7s %7s %7s %6s", "dx", "particles", "thr", "ns/pt-step",
+  "dt/dx", "ns/dx", "p-it/st", "v-it/st", "spread")
 for _, p in ipairs(PHASES) do head = head .. string.format(" %6s", SHORT[p]) end
 head = head .. string.format(" %7s %7s", "x step", "x sweep")
 print(head)
 io.stdout:flush()
 local one = {} -- the 1-thread row of each rung, for the speed-ups
 local function print_row(row)
-  local line = string.format("1/%-5.5g %9d %3d %10.0f %7.1f %7.1f %5.0f%%", row.k, row.particles, row.threads,
-    row.ns, row.piter, row.viter, 100 * row.spread)
+  local line = string.format("1/%-5.5g %9d %3d %10.0f %6.4f %7.0f %7.1f %7.1f %5.0f%%", row.k, row.particles,
+    row.threads, row.ns, row.dtdx, row.ns / row.dtdx, row.piter, row.viter, 100 * row.spread)
   for _, p in ipairs(PHASES) do line = line .. string.format(" %5.1f%%", 100 * row.phases[p] / row.step) end
   local b = one[row.k]
   if row.threads ~= 1 and b then
@@ -127,7 +139,7 @@ for _, r in ipairs(rungs) do
     local lo, hi = math.huge, 0
     for _, x in ipairs(ns) do lo, hi = math.min(lo, x), math.max(hi, x) end
     local row = { k = r.k, dx = r.dx, particles = r.particles, threads = t, runs = runs, steps = steps,
-                  ns = med, spread = (hi - lo) / med, piter = pick.piter, viter = pick.viter,
+                  ns = med, spread = (hi - lo) / med, piter = pick.piter, viter = pick.viter, dtdx = pick.dtdx,
                   phases = pick.phases, step = step, sweeps = sweeps, neighbours = pick.neighbours }
     rows[#rows + 1] = row
     if t == 1 then one[r.k] = row end
@@ -140,16 +152,18 @@ print("viscosity), v-asm / v-sol (implicit viscous assembly / solve), p-asm / p-
 print("pressure and density-correction solves), corr (projection, continuity, density correction), shift,")
 print("other (plates, checks). x step, x sweep: speed-up over 1 thread of the step and of the sweeps (the")
 print("step without the two solve phases). ns/pt-step: median over runs of the step's wall time per particle.")
+print(adaptive and "dt: the engine's adaptive step; dt/dx: the plate's mean travel a timed step in dx; ns/dx: ns/pt-step over dt/dx"
+  or string.format("dt = %g dx fixed after the warm-up; ns/dx: ns/pt-step over dt/dx (the cost of moving the plate by one dx)", dt_dx))
 
 os.execute("mkdir -p '" .. outdir .. "'")
 local csv = assert(io.open(outdir .. "/scaling.csv", "w"))
-local cols = "dx,particles,threads,runs,steps,ns_per_particle_step,spread,pressure_iterations_per_step," ..
+local cols = "dx,particles,threads,runs,steps,dt_over_dx,ns_per_particle_step,spread,pressure_iterations_per_step," ..
   "viscous_iterations_per_step,neighbours_mean,step_s"
 for _, p in ipairs(PHASES) do cols = cols .. "," .. p .. "_s" end
 csv:write(cols, "\n")
 for _, row in ipairs(rows) do
-  local line = string.format("%.10g,%d,%d,%d,%d,%.6g,%.4g,%.6g,%.6g,%.4g,%.6g", row.dx, row.particles, row.threads,
-    row.runs, row.steps, row.ns, row.spread, row.piter, row.viter, row.neighbours, row.step)
+  local line = string.format("%.10g,%d,%d,%d,%d,%.6g,%.6g,%.4g,%.6g,%.6g,%.4g,%.6g", row.dx, row.particles, row.threads,
+    row.runs, row.steps, row.dtdx, row.ns, row.spread, row.piter, row.viter, row.neighbours, row.step)
   for _, p in ipairs(PHASES) do line = line .. string.format(",%.6g", row.phases[p]) end
   csv:write(line, "\n")
 end
