@@ -6,8 +6,8 @@
 #   - the renderer (tests/bench/bench_render.c): 100 000 particles to PNG, median of 5;
 #   - the scaling of the step (scripts/bench_scaling.lua): the paper's squeeze (Bn = 5,
 #     M = 800, Re = 1, V = -1) from 10^3 particles up to BENCH_MAX_N (default 120000; the
-#     10^6 row is opt-in, BENCH_MAX_N=1000000: several minutes a run), a fixed dt = dx/40
-#     after 3 adaptive steps (BENCH_DT=adaptive: the engine's own step control),
+#     10^6 row is opt-in, BENCH_MAX_N=1000000: several minutes a run), steps 21-80 at a
+#     fixed dt = dx/40 after 20 adaptive steps (BENCH_DT=adaptive: the engine's own step),
 #     1 and 2 threads: ns per particle-step, solver iterations per step and the share of
 #     each phase of the step; writes out/bench/scaling.csv and scaling.png.
 #   - speed against error (scripts/bench_validation.lua): every validation case (modules
@@ -94,9 +94,9 @@ section header
 section "$B/sph" scripts/bench_squeeze.lua runs="$runs"
 section printf '\nrenderer, 100 000 particles (tests/bench/bench_render.c):\n'
 section "$B/bench_render" "$out"
-section printf '\nscaling of the step: squeeze Bn = 5, M = 800, Re = 1, V = -1, after 3 adaptive steps dt = %s (scripts/bench_scaling.lua):\n' \
+section printf '\nscaling of the step: squeeze Bn = 5, M = 800, Re = 1, V = -1, steps 21-80, after 20 adaptive steps, dt = %s (scripts/bench_scaling.lua):\n' \
     "$(case ${BENCH_DT:-0.025} in adaptive) echo 'adaptive' ;; *) echo "${BENCH_DT:-0.025} dx" ;; esac)"
-section "$B/sph" scripts/bench_scaling.lua max_n="$max_n" out="$out" dt="${BENCH_DT:-0.025}"
+section "$B/sph" scripts/bench_scaling.lua max_n="$max_n" out="$out" dt="${BENCH_DT:-0.025}" warmup=20 steps=60
 # the validation cases, printed row by row as they finish (minutes) and written by the
 # driver to out/bench/validation.txt; a failed run (an engine error) is printed as FAILED
 # and the driver exits 1 once its table, CSV and plot are written: the bench goes on and
