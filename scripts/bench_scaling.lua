@@ -14,12 +14,11 @@
 -- 10^6 rows then ran at a smaller dt than the others, 6.9e-6 against dx/40 = 1.8e-5 in one
 -- run.)
 -- Run by scripts/bench.sh (`make bench`); by hand:
---   build/sph scripts/bench_scaling.lua [max_n=120000] [runs=3] [steps=..] [warmup=3]
+--   build/sph scripts/bench_scaling.lua [max_n=120000] [runs=3] [steps=60] [warmup=20]
 --                                       [dt=0.025|adaptive] [threads=1,2] [dx=0.0025] [out=out/bench]
 --                                       [density_limit=0.008] [density_solve_tol=1e-3]
--- density_limit is passed to sph.world (0: no passes beyond density_passes; the 10^6 row's
--- three timed steps follow the impulsive start closely, where the default's extra passes
--- double the pressure-type iterations: 24.0 -> 51.3 a step).
+-- density_limit is passed to sph.world (0: no passes beyond density_passes; at 10^6 the
+-- default's extra passes take most of the step: README, *Speed*).
 -- max_n caps the particle count (fluid + wall) of the ladder (default 1.2e5; the 10^6 row is
 -- opt-in: max_n=1e6, several minutes a run); dx= runs one
 -- resolution only. Runs are interleaved (run 1 of every thread count, then run 2, ...) and
@@ -35,7 +34,7 @@ local squeeze = require "sph.squeeze"
 local o = ... or {}
 
 local max_n = o.max_n or 1.2e5
-local warmup = math.floor(o.warmup or 3)
+local warmup = math.floor(o.warmup or 20)
 local adaptive = o.dt == "adaptive"
 local dt_dx = tonumber(o.dt or o.dt_dx or 0.025) -- dt = dx / 40 (the adaptive step of this case saw-tooths around 0.02-0.075 dx at 10^5)
 if not adaptive and not (dt_dx and dt_dx > 0) then
@@ -120,7 +119,7 @@ end
 local rows = {}
 for _, r in ipairs(rungs) do
   local runs = math.floor(o.runs or (r.particles > 3e4 and 1 or 3))
-  local steps = math.floor(o.steps or math.max(3, math.min(40, 4e5 // r.particles)))
+  local steps = math.floor(o.steps or 60)
   local byt = {}
   for _, t in ipairs(threads) do byt[t] = {} end
   for _ = 1, runs do
