@@ -127,7 +127,26 @@ end
 
 -- Constant velocity V = 1: the plate force against fref(h) over h in [h_end, h_win]; the
 -- error is the relative L2 norm over every step in the window (the force's step-to-step
--- noise, a few %, adds to it in quadrature).
+-- noise, a few %, adds to it in quadrature). Also returned, the two parts of it apart:
+-- trend_error, the relative L2 norm of the force's running mean over TREND_STEPS steps
+-- (centred, cut at the window's ends) against the reference, and noise, that of the force
+-- about its running mean (error^2 is close to trend_error^2 + noise^2).
+local TREND_STEPS = 11
+
+local function trend_and_noise(fs, refs)
+  local n, m = #fs, TREND_STEPS // 2
+  local pre = { [0] = 0 }
+  for k = 1, n do pre[k] = pre[k - 1] + fs[k] end
+  local t2, n2, r2 = 0, 0, 0
+  for k = 1, n do
+    local lo, hi = math.max(1, k - m), math.min(n, k + m)
+    local mean = (pre[hi] - pre[lo - 1]) / (hi - lo + 1)
+    t2 = t2 + (mean - refs[k]) ^ 2
+    n2 = n2 + (fs[k] - mean) ^ 2
+    r2 = r2 + refs[k] ^ 2
+  end
+  return math.sqrt(t2 / r2), math.sqrt(n2 / r2)
+end
 local function velocity_case(name, opts, fref)
   return function(dx, ro)
     ro = ro or {}
@@ -137,17 +156,21 @@ local function velocity_case(name, opts, fref)
                                   world = world_opts(ro, opts.world) }
     local A = area(w, dx)
     local num, den, n, sum_ratio = 0, 0, 0, 0
+    local fs, refs = {}, {}
     local trace = open_trace(ro)
     squeeze_to(w, top, h_end, name, dx, function(t, h, V, F)
       local ref = fref(h, ro.V or 1, A)
       if h <= h_win then
         num, den, n, sum_ratio = num + (F - ref) ^ 2, den + ref ^ 2, n + 1, sum_ratio + F / ref
+        fs[n], refs[n] = F, ref
       end
       if trace then trace:write(string.format("%.6f %.6f %.6g %.6g %.6g\n", t, h, V, F, ref)) end
     end, ro.max_steps or 100000)
     if trace then trace:close() end
     if n < 10 then error(string.format("%s, dx = %g: only %d steps in the window h in [%g, %g]", name, dx, n, h_end, h_win)) end
-    local r = result(w, math.sqrt(num / den), { samples = n, mean_ratio = sum_ratio / n, area = A })
+    local trend, noise = trend_and_noise(fs, refs)
+    local r = result(w, math.sqrt(num / den), { samples = n, mean_ratio = sum_ratio / n, area = A,
+                                                 trend_error = trend, noise = noise })
     w:close()
     return r
   end

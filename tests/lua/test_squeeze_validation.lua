@@ -105,17 +105,29 @@ T.case("Bingham squeeze in the thin-film regime against thin-film theory", funct
   -- one thread): force / theory 1.0116 and 0.9971 (errors 0.0567, 0.0138) with -O2,
   -- 1.0117 and 0.9960 (0.0582, 0.0239) with -O1. The mean ratio is the stable figure (the
   -- L2 error carries the force's step-to-step noise): within 0.03 of each build's middle;
-  -- the errors under 0.08. With the defaults this film blows up (squeeze_validation.lua).
+  -- the errors under 0.08 (until session 15, below). With the defaults this film blows up (squeeze_validation.lua).
   -- Session 14: the L2 error's spread over round-off variants of one code (1 and 2
   -- threads, pressure tolerance 1e-6 / 1e-7 / 1e-8, dx = 1/30 and 1/30 +- 1e-10; 18 runs)
   -- at 1/30: 0.020-0.073 (mean 0.052) with session 13's code, 0.022-0.081 (mean 0.051)
   -- with session 14's solver guesses; 0.08 is at that distribution's tail, so a change of
   -- round-off alone can cross it (one variant in 18 did), while the mean ratio stays
   -- within 1.00-1.03.
+  -- Session 15: the L2 error taken apart (squeeze_validation.lua: trend_error, the force's
+  -- 11-step running mean against theory; noise, the force about that mean). 18 variants
+  -- (as above) of session 15's code: at 1/30 error 0.023-0.076 (the old bound 0.08 0.005
+  -- above the largest), trend 0.012-0.052, noise 0.019-0.047, mean ratio 1.005-1.020,
+  -- 265-301 steps in the window (round-off moves the step count too); at 1/40 error
+  -- 0.031-0.070, trend 0.017-0.039, noise 0.017-0.054, ratio 0.992-1.007. The bounds on the
+  -- trend and the noise, 0.07, are over the largest measured by a third or more, and a
+  -- trend off by 0.07 is a real departure from the theory, not noise.
   T.close(rs[1].mean_ratio, 1.012, 0.03, "Bingham thin film, dx = 1/30: force within 0.03 of 1.012 x thin-film theory")
   T.close(rs[2].mean_ratio, 0.997, 0.03, "Bingham thin film, dx = 1/40: force within 0.03 of 0.997 x thin-film theory")
-  T.below(rs[1].error, 0.08, "Bingham thin film, dx = 1/30: error under 0.08")
-  T.below(rs[2].error, 0.08, "Bingham thin film, dx = 1/40: error under 0.08")
+  for k, name in ipairs{ "1/30", "1/40" } do
+    print(string.format("# Bingham thin film, dx = %s: error %.4f = trend %.4f (+) noise %.4f", name, rs[k].error,
+      rs[k].trend_error, rs[k].noise))
+    T.below(rs[k].trend_error, 0.07, "Bingham thin film, dx = " .. name .. ": the force's running mean within 0.07 (L2) of theory")
+    T.below(rs[k].noise, 0.07, "Bingham thin film, dx = " .. name .. ": the force's noise about its running mean under 0.07")
+  end
   T.below(rs[2].peak_density_error, 0.01, "Bingham thin film, dx = 1/40: peak density error under 1 %")
 end)
 
