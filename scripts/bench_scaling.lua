@@ -82,11 +82,16 @@ local function one_run(r, nthreads, steps)
   for _ = 1, warmup do w:step() end
   local dt = not adaptive and dt_dx * r.dx or nil
   local s0 = w:stats()
-  for _ = 1, steps do w:step(dt) end
+  local maxerr = 0
+  for _ = 1, steps do
+    w:step(dt)
+    maxerr = math.max(maxerr, w:stats().max_density_error)
+  end
   local s1 = w:stats()
   local n = s1.steps - s0.steps
   local wall = s1.wall_time - s0.wall_time
-  local res = { ns = 1e9 * wall / (n * r.particles), wall = wall, dtdx = (s1.t - s0.t) / (n * r.dx),
+  local res = { ns = 1e9 * wall / (n * r.particles), wall = wall, dtdx = (s1.t - s0.t) / (n * r.dx), maxerr = maxerr,
+                psolves = (s1.pressure_solves - s0.pressure_solves) / n,
                 piter = (s1.solver_iterations_total - s0.solver_iterations_total) / n,
                 viter = (s1.visc_iterations_total - s0.visc_iterations_total) / n,
                 phases = {}, neighbours = s1.neighbours }
@@ -97,16 +102,17 @@ local function one_run(r, nthreads, steps)
 end
 
 -- the table: printed row by row as the rungs finish (a long run shows its progress)
-local head = string.format("%-7s %9s %3s %10s %6s %7s %7s %7s %6s", "dx", "particles", "thr", "ns/pt-step",
-  "dt/dx", "ns/dx", "p-it/st", "v-it/st", "spread")
+local head = string.format("%-7s %9s %3s %10s %6s %7s %7s %7s %7s %6s %6s", "dx", "particles", "thr", "ns/pt-step",
+  "dt/dx", "ns/dx", "p-it/st", "p-sol/st", "v-it/st", "rhoerr", "spread")
 for _, p in ipairs(PHASES) do head = head .. string.format(" %6s", SHORT[p]) end
 head = head .. string.format(" %7s %7s", "x step", "x sweep")
 print(head)
 io.stdout:flush()
 local one = {} -- the 1-thread row of each rung, for the speed-ups
 local function print_row(row)
-  local line = string.format("1/%-5.5g %9d %3d %10.0f %6.4f %7.0f %7.1f %7.1f %5.0f%%", row.k, row.particles,
-    row.threads, row.ns, row.dtdx, row.ns / row.dtdx, row.piter, row.viter, 100 * row.spread)
+  local line = string.format("1/%-5.5g %9d %3d %10.0f %6.4f %7.0f %7.1f %8.2f %7.1f %5.2f%% %5.0f%%", row.k,
+    row.particles, row.threads, row.ns, row.dtdx, row.ns / row.dtdx, row.piter, row.psolves, row.viter,
+    100 * row.maxerr, 100 * row.spread)
   for _, p in ipairs(PHASES) do line = line .. string.format(" %5.1f%%", 100 * row.phases[p] / row.step) end
   local b = one[row.k]
   if row.threads ~= 1 and b then
@@ -139,6 +145,7 @@ for _, r in ipairs(rungs) do
     for _, x in ipairs(ns) do lo, hi = math.min(lo, x), math.max(hi, x) end
     local row = { k = r.k, dx = r.dx, particles = r.particles, threads = t, runs = runs, steps = steps,
                   ns = med, spread = (hi - lo) / med, piter = pick.piter, viter = pick.viter, dtdx = pick.dtdx,
+                  maxerr = pick.maxerr, psolves = pick.psolves,
                   phases = pick.phases, step = step, sweeps = sweeps, neighbours = pick.neighbours }
     rows[#rows + 1] = row
     if t == 1 then one[r.k] = row end
@@ -153,16 +160,18 @@ print("other (plates, checks). x step, x sweep: speed-up over 1 thread of the st
 print("step without the two solve phases). ns/pt-step: median over runs of the step's wall time per particle.")
 print(adaptive and "dt: the engine's adaptive step; dt/dx: the plate's mean travel a timed step in dx; ns/dx: ns/pt-step over dt/dx"
   or string.format("dt = %g dx fixed after the warm-up; ns/dx: ns/pt-step over dt/dx (the cost of moving the plate by one dx)", dt_dx))
+print("p-sol/st: pressure-type solves a step (the pressure, then one per density pass); rhoerr: the largest max density")
+print("error after a timed step (over density_tol, 0.5 %, a step takes a second density pass)")
 
 os.execute("mkdir -p '" .. outdir .. "'")
 local csv = assert(io.open(outdir .. "/scaling.csv", "w"))
-local cols = "dx,particles,threads,runs,steps,dt_over_dx,ns_per_particle_step,spread,pressure_iterations_per_step," ..
+local cols = "dx,particles,threads,runs,steps,dt_over_dx,max_density_error,pressure_solves_per_step,ns_per_particle_step,spread,pressure_iterations_per_step," ..
   "viscous_iterations_per_step,neighbours_mean,step_s"
 for _, p in ipairs(PHASES) do cols = cols .. "," .. p .. "_s" end
 csv:write(cols, "\n")
 for _, row in ipairs(rows) do
-  local line = string.format("%.10g,%d,%d,%d,%d,%.6g,%.6g,%.4g,%.6g,%.6g,%.4g,%.6g", row.dx, row.particles, row.threads,
-    row.runs, row.steps, row.dtdx, row.ns, row.spread, row.piter, row.viter, row.neighbours, row.step)
+  local line = string.format("%.10g,%d,%d,%d,%d,%.6g,%.6g,%.4g,%.6g,%.4g,%.6g,%.6g,%.4g,%.6g", row.dx, row.particles,
+    row.threads, row.runs, row.steps, row.dtdx, row.maxerr, row.psolves, row.ns, row.spread, row.piter, row.viter, row.neighbours, row.step)
   for _, p in ipairs(PHASES) do line = line .. string.format(",%.6g", row.phases[p]) end
   csv:write(line, "\n")
 end
