@@ -12,7 +12,8 @@
 -- thin-film options: at constant velocity pressure_gradient=difference, under a load
 -- density_correction=gmres pressure_gradient=difference; README, Thin films),
 -- density_descent and projection_passes (README, Validation), tol and visc_tol (the pressure
--- and viscous solves' relative residuals; README, Speed).
+-- and viscous solves' relative residuals; README, Speed), dt_growth (fixed | eased: README,
+-- Speed; eased for large runs).
 -- Writes out/series.csv: t, h, plate velocity, plate force, solver iterations, max
 -- density error, and the lubrication reference (Newtonian: mu V / h^6 or h(t) under load).
 -- frames=N (default 0): N yield-state frames evenly over the run into out/frames/f_0001.png
@@ -31,7 +32,7 @@ local out = o.out or "out/squeeze"
 local world_opts = { threads = o.threads, viscosity = o.viscosity, shifting = o.shifting,
                      density_correction = o.density_correction, pressure_gradient = o.pressure_gradient, wall = o.wall,
                      projection_passes = o.projection_passes, density_descent = o.density_descent,
-                     tol = o.tol, visc_tol = o.visc_tol }
+                     tol = o.tol, visc_tol = o.visc_tol, dt_growth = o.dt_growth }
 local width, height = o.width or 0.5, o.height or 1
 -- the plates are sized for the sample spread to the gap h_min; the run ends at h_stop, by
 -- default h_min (thinner, the sample would flow off the plates' ends)

@@ -169,7 +169,7 @@ static int l_world(lua_State *L) {
     static const char *const keys[] = {"dx", "h", "rho", "gravity", "viscosity", "shifting",
                                        "cfl", "cvisc", "cforce", "dt_max", "periodic", "symmetry",
                                        "threads", "tol", "visc_tol", "max_iter", "surface", "density_relax",
-                                       "density_tol", "density_passes", "density_limit", "density_diffusion", "density_solve_tol", "pressure_predictor", "solver", "density_correction", "pressure_gradient", "wall", "projection_passes", "density_descent", 0};
+                                       "density_tol", "density_passes", "density_limit", "density_diffusion", "density_solve_tol", "pressure_predictor", "solver", "density_correction", "pressure_gradient", "wall", "projection_passes", "density_descent", "dt_growth", 0};
     luaL_checktype(L, 1, LUA_TTABLE);
     sph_lua_opt_only(L, 1, "world", keys);
     sph_params p;
@@ -219,6 +219,7 @@ static int l_world(lua_State *L) {
                                      p.pressure_gradient == SPH_GRAD_DIFFERENCE)
                               ? SPH_GRAD_DIFFERENCE : SPH_GRAD_SYMMETRIC;
     p.wall_curved = opt_choice(L, "wall", "linear", "curved", p.wall_curved);
+    p.dt_eased = opt_choice(L, "dt_growth", "fixed", "eased", p.dt_eased);
     p.solver = opt_choice(L, "solver", "amg", "jacobi", p.solver == SPH_SOLVER_JACOBI) ? SPH_SOLVER_JACOBI
                                                                                        : SPH_SOLVER_AMG;
     t = lua_getfield(L, 1, "periodic");

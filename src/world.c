@@ -37,6 +37,7 @@ void sph_params_default(sph_params *p) {
     p->wall_curved = 0;
     p->pressure_gradient = SPH_GRAD_SYMMETRIC;
     p->projection_passes = 0;
+    p->dt_eased = 0;
 }
 
 int sph_world_fail(sph_world *w, const char *fmt, ...) {
@@ -60,7 +61,8 @@ static const char *check_params(const sph_params *p) {
         "solver must be SPH_SOLVER_AMG or SPH_SOLVER_JACOBI", "density_limit must be in [0, 1) (0: none)", "density_diffusion must be in [0, 0.25]", "density_solve_tol must be in (0, 1)",
         "pressure_predictor must be in [0, 1]", "density_gmres must be 0 or 1",
         "pressure_gradient must be SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE", "wall_curved must be 0 or 1",
-        "projection_passes must be in [0, 10]", "density_descent must be in [0, 100]", "visc_tol must be in (0, 1)"};
+        "projection_passes must be in [0, 10]", "density_descent must be in [0, 100]", "visc_tol must be in (0, 1)",
+        "dt_eased must be 0 or 1"};
     if (!(p->dx > 0 && isfinite(p->dx))) return bad[0];
     if (!(p->h >= 0 && isfinite(p->h))) return bad[1];
     if (!(p->rho0 > 0 && isfinite(p->rho0))) return bad[2];
@@ -87,6 +89,7 @@ static const char *check_params(const sph_params *p) {
     if (!(p->projection_passes >= 0 && p->projection_passes <= 10)) return bad[21];
     if (!(p->density_descent >= 0 && p->density_descent <= 100)) return bad[22];
     if (!(p->visc_tol > 0 && p->visc_tol < 1)) return bad[23];
+    if (p->dt_eased != 0 && p->dt_eased != 1) return bad[24];
     return 0;
 }
 
