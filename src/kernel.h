@@ -23,20 +23,27 @@ static inline double sph_kernel_pos4(double a) {
     return a2 * a2;
 }
 
+/* The bracket of W at s = r / h (W = 7/(478 pi h^2) sph_kernel_shape(s)), and the one of
+ * dW/dr (dW/dr = -5 * 7/(478 pi h^3) sph_kernel_dshape(s)): the hot loops (neighbours.c,
+ * shifting.c) take these with their constants hoisted. */
+static inline double sph_kernel_shape(double s) {
+    return sph_kernel_pos5(3.0 - s) - 6.0 * sph_kernel_pos5(2.0 - s) + 15.0 * sph_kernel_pos5(1.0 - s);
+}
+
+static inline double sph_kernel_dshape(double s) {
+    return sph_kernel_pos4(3.0 - s) - 6.0 * sph_kernel_pos4(2.0 - s) + 15.0 * sph_kernel_pos4(1.0 - s);
+}
+
 /* W(r, h) */
 static inline double sph_kernel_value(double r, double h) {
-    double s = r / h;
     double c = 7.0 / (478.0 * SPH_PI * h * h);
-    return c * (sph_kernel_pos5(3.0 - s) - 6.0 * sph_kernel_pos5(2.0 - s) +
-                15.0 * sph_kernel_pos5(1.0 - s));
+    return c * sph_kernel_shape(r / h);
 }
 
 /* dW/dr (<= 0) */
 static inline double sph_kernel_deriv(double r, double h) {
-    double s = r / h;
     double c = -5.0 * 7.0 / (478.0 * SPH_PI * h * h * h);
-    return c * (sph_kernel_pos4(3.0 - s) - 6.0 * sph_kernel_pos4(2.0 - s) +
-                15.0 * sph_kernel_pos4(1.0 - s));
+    return c * sph_kernel_dshape(r / h);
 }
 
 #endif

@@ -277,8 +277,7 @@ static SPH_CLONES void fill_row(sph_world *w, int i, int ki, int *cls, int *kf_,
         int k = kf_[q];
         double dx = xi - cx[k], dy = yi - cy[k], r2 = dx * dx + dy * dy;
         double r = sqrt(r2), sq = r * hinv;
-        double dw = kc * (sph_kernel_pos4(3.0 - sq) - 6.0 * sph_kernel_pos4(2.0 - sq) +
-                          15.0 * sph_kernel_pos4(1.0 - sq));
+        double dw = kc * sph_kernel_dshape(sq);
         /* one division for g = dW/dr / r and F = r dW/dr / (r^2 + eps^2) */
         double re = r2 + eps2, inv = 1.0 / (r > 0.0 ? r * re : 1.0);
         double g = r > 0.0 ? dw * re * inv : 0.0;
@@ -287,8 +286,7 @@ static SPH_CLONES void fill_row(sph_world *w, int i, int ki, int *cls, int *kf_,
         ngx[q] = g * dx;
         ngy[q] = g * dy;
         nf_[q] = dw * r2 * inv;
-        nw_[q] = kv * (sph_kernel_pos5(3.0 - sq) - 6.0 * sph_kernel_pos5(2.0 - sq) +
-                       15.0 * sph_kernel_pos5(1.0 - sq));
+        nw_[q] = kv * sph_kernel_shape(sq);
         double v = vol[j];
         divr -= v * r * dw;
         mxx -= v * g * dx * dx;

@@ -42,8 +42,7 @@ static SPH_CLONES void concentration(const sph_world *w, int i, const double *vo
         int j = nj[k];
         double ddx = xi - x[j], ddy = yi - y[j];
         double sq = sqrt(ddx * ddx + ddy * ddy) / h;
-        double q = kw * (sph_kernel_pos5(3.0 - sq) - 6.0 * sph_kernel_pos5(2.0 - sq) +
-                         15.0 * sph_kernel_pos5(1.0 - sq)) * wdx;
+        double q = kw * sph_kernel_shape(sq) * wdx;
         q *= q;
         double v = vol[j] * (1.0 + R * q * q);
         cx += v * ngx[k];
