@@ -71,22 +71,21 @@ static int make_grid(sph_world *w) {
 static void permute(sph_world *w, const int *perm) {
     int n = w->n;
     double *dscratch = w->xs;
-    double *darr[22] = {w->x, w->y, w->u, w->v, w->ax, w->ay, w->p, w->rho, w->m,
-                        w->eta, w->gd, w->phi, w->psens[0], w->psens[1], w->psens[2], w->psens[3]};
-    int nd = 16;
-    sph_guess *gs[] = {&w->gu, &w->gv, &w->gp}; /* the first guesses in use (explicit viscosity: none) */
-    for (int g = 0; g < 3; g++)
-        if (gs[g]->n == n) {
-            darr[nd++] = gs[g]->d;
-            darr[nd++] = gs[g]->d1;
-        }
+    /* a first guess's arrays only while it is in use (explicit viscosity: never): 0 skips */
+#define GUESS(g) ((g).n == n ? (g).d : 0), ((g).n == n ? (g).d1 : 0)
+    double *darr[] = {w->x,        w->y,        w->u,        w->v,        w->ax,        w->ay,
+                      w->p,        w->rho,      w->m,        w->eta,      w->gd,        w->phi,
+                      w->psens[0], w->psens[1], w->psens[2], w->psens[3], GUESS(w->gu), GUESS(w->gv),
+                      GUESS(w->gp)};
+#undef GUESS
     int *iscratch = w->iscratch;
     int *iarr[] = {w->kind, w->mat, w->id};
-    int ni = (int)(sizeof iarr / sizeof *iarr);
+    int nd = (int)(sizeof darr / sizeof *darr), ni = (int)(sizeof iarr / sizeof *iarr);
 #pragma omp parallel num_threads(w->threads)
     {
         for (int a = 0; a < nd; a++) {
             double *arr = darr[a];
+            if (!arr) continue; /* the same for every thread: no barrier skipped unevenly */
 #pragma omp for schedule(static)
             for (int i = 0; i < n; i++) dscratch[i] = arr[perm[i]];
 #pragma omp for schedule(static)
