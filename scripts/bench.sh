@@ -94,9 +94,11 @@ section header
 section "$B/sph" scripts/bench_squeeze.lua runs="$runs"
 section printf '\nrenderer, 100 000 particles (tests/bench/bench_render.c):\n'
 section "$B/bench_render" "$out"
-section printf '\nscaling of the step: squeeze Bn = 5, M = 800, Re = 1, V = -1, steps 21-80, after 20 adaptive steps, dt = %s (scripts/bench_scaling.lua):\n' \
-    "$(case ${BENCH_DT:-0.025} in adaptive) echo 'adaptive' ;; *) echo "${BENCH_DT:-0.025} dx" ;; esac)"
-section "$B/sph" scripts/bench_scaling.lua max_n="$max_n" out="$out" dt="${BENCH_DT:-0.025}"
+dt_rule=${BENCH_DT:-0.025}
+dt_label="$dt_rule dx"
+[ "$dt_rule" = adaptive ] && dt_label=adaptive
+section printf '\nscaling of the step: squeeze Bn = 5, M = 800, Re = 1, V = -1, steps 21-80, after 20 adaptive steps, dt = %s (scripts/bench_scaling.lua):\n' "$dt_label"
+section "$B/sph" scripts/bench_scaling.lua max_n="$max_n" out="$out" dt="$dt_rule"
 # the validation cases, printed row by row as they finish (minutes) and written by the
 # driver to out/bench/validation.txt; a failed run (an engine error) is printed as FAILED
 # and the driver exits 1 once its table, CSV and plot are written: the bench goes on and

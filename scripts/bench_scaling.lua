@@ -15,8 +15,11 @@
 -- run.)
 -- Run by scripts/bench.sh (`make bench`); by hand:
 --   build/sph scripts/bench_scaling.lua [max_n=120000] [runs=3] [steps=60] [warmup=20]
---                                       [dt=0.025|adaptive] [threads=1,2] [dx=0.0025] [out=out/bench]
---                                       [density_limit=0.008] [density_solve_tol=1e-3]
+--                                       [dt=0.025|adaptive] [until_t=] [threads=1,2] [dx=0.0025]
+--                                       [out=out/bench] [density_limit=0.008] [density_solve_tol=1e-3]
+--                                       [dt_growth=fixed|eased]
+-- until_t: the timed steps run until the time t reaches it instead of `steps` of them (the
+-- same span of the flow for every dt rule: README, *Speed*, t = 0.009 at dx = 1/450).
 -- density_limit is passed to sph.world (0: no passes beyond density_passes; at 10^6 the
 -- default's extra passes take most of the step: README, *Speed*).
 -- max_n caps the particle count (fluid + wall) of the ladder (default 1.2e5; the 10^6 row is
@@ -36,7 +39,7 @@ local o = ... or {}
 local max_n = o.max_n or 1.2e5
 local warmup = math.floor(o.warmup or 20)
 local adaptive = o.dt == "adaptive"
-local dt_dx = tonumber(o.dt or o.dt_dx or 0.025) -- dt = dx / 40 (the adaptive step of this case saw-tooths around 0.02-0.075 dx at 10^5)
+local dt_dx = tonumber(o.dt or 0.025) -- dt = dx / 40 (the adaptive step of this case saw-tooths around 0.02-0.075 dx at 10^5)
 if not adaptive and not (dt_dx and dt_dx > 0) then
   error("bench_scaling: dt must be 'adaptive' or a positive number (dt / dx), got '" .. tostring(o.dt) .. "'")
 end
@@ -57,7 +60,7 @@ local median = require("sph.bench").median
 local function build(k, nthreads)
   return squeeze.build{ dx = 1 / k, Re = 1, Bn = 5, M = 800, mode = "velocity", V = 1,
                         world = { threads = nthreads, max_iter = 100000, density_limit = o.density_limit,
-                                  density_solve_tol = o.density_solve_tol } }
+                                  density_solve_tol = o.density_solve_tol, dt_growth = o.dt_growth } }
 end
 
 -- particles (fluid + wall) of each rung, from a world that is built and dropped
@@ -83,14 +86,16 @@ local function one_run(r, nthreads, steps)
   local dt = not adaptive and dt_dx * r.dx or nil
   local s0 = w:stats()
   local maxerr = 0
-  for _ = 1, steps do
+  local until_t = tonumber(o.until_t)
+  for _ = 1, until_t and math.huge or steps do
+    if until_t and w.t >= until_t then break end
     w:step(dt)
     maxerr = math.max(maxerr, w:stats().max_density_error)
   end
   local s1 = w:stats()
   local n = s1.steps - s0.steps
   local wall = s1.wall_time - s0.wall_time
-  local res = { ns = 1e9 * wall / (n * r.particles), wall = wall, dtdx = (s1.t - s0.t) / (n * r.dx), maxerr = maxerr,
+  local res = { n = n, ns = 1e9 * wall / (n * r.particles), wall = wall, dtdx = (s1.t - s0.t) / (n * r.dx), maxerr = maxerr,
                 psolves = (s1.pressure_solves - s0.pressure_solves) / n,
                 piter = (s1.solver_iterations_total - s0.solver_iterations_total) / n,
                 viter = (s1.visc_iterations_total - s0.visc_iterations_total) / n,
@@ -143,7 +148,7 @@ for _, r in ipairs(rungs) do
     local sweeps = step - pick.phases.viscous_solve - pick.phases.pressure_solve
     local lo, hi = math.huge, 0
     for _, x in ipairs(ns) do lo, hi = math.min(lo, x), math.max(hi, x) end
-    local row = { k = r.k, dx = r.dx, particles = r.particles, threads = t, runs = runs, steps = steps,
+    local row = { k = r.k, dx = r.dx, particles = r.particles, threads = t, runs = runs, steps = pick.n,
                   ns = med, spread = (hi - lo) / med, piter = pick.piter, viter = pick.viter, dtdx = pick.dtdx,
                   maxerr = pick.maxerr, psolves = pick.psolves,
                   phases = pick.phases, step = step, sweeps = sweeps, neighbours = pick.neighbours }
