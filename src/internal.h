@@ -226,6 +226,9 @@ struct sph_world {
     double *nb_f;              /* r_ij . grad_i W_ij / (r_ij^2 + eps^2)             */
     double *nb_w;              /* W_ij (the pressure predictor's Shepard average)   */
     long nb_cap;
+    int nb_n;                  /* the particle count the lists were built for (-1 from the
+                                  sort until the build ends, 0 before the first step): a
+                                  list is read outside the step (rho_sum) only if nb_n == n */
     int *nb_count;
     int *nb_mid;               /* row i: fluid (and fluid ghost) neighbours in
                                   [nb_start[i], nb_mid[i]), walls in [nb_mid[i], nb_start[i+1]) */

@@ -165,7 +165,8 @@ static int w_render(lua_State *L) {
     double *v = scratch(L, sizeof(double) * (size_t)n);
     sph_world_field(w, "x", x);
     sph_world_field(w, "y", y);
-    sph_world_field(w, yield ? "yielded" : color, v);
+    if (sph_world_field(w, yield ? "yielded" : color, v) == -2)
+        luaL_error(L, "render: field '%s' needs the neighbour list of a step (call w:step() first)", color);
     s.n = (size_t)n, s.x = x, s.y = y;
     if (yield) {
         unsigned char *cat = scratch(L, (size_t)n);

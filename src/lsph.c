@@ -544,7 +544,11 @@ static int w_field(lua_State *L) {
     const char *name = luaL_checkstring(L, 2);
     int n = sph_world_nfluid(lw->w);
     double *buf = lua_newuserdatauv(L, sizeof(double) * (size_t)(n > 0 ? n : 1), 0);
-    if (sph_world_field(lw->w, name, buf) < 0) {
+    int got = sph_world_field(lw->w, name, buf);
+    if (got == -2)
+        return luaL_error(L, "field '%s': no neighbour list for the current particles yet (it is the "
+                             "last step's: call w:step() first, and again after w:fill or sph.load)", name);
+    if (got < 0) {
         luaL_Buffer b;
         luaL_buffinit(L, &b);
         const char *const *names = sph_world_field_names();

@@ -105,6 +105,7 @@ static void permute(sph_world *w, const int *perm) {
 }
 
 int sph_neighbours_sort(sph_world *w) {
+    w->nb_n = -1;
     if (make_grid(w)) return -1;
     int n = w->n, ncell = w->ncx * w->ncy;
     int *cs = w->cell_start;
@@ -391,6 +392,7 @@ int sph_neighbours_build(sph_world *w) {
             fill_row(w, i, kof[i], cls, kf_, kw_, r2max, kc, kv, hinv, eps2);
         }
     }
+    w->nb_n = n;
     return 0;
 }
 

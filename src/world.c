@@ -537,11 +537,11 @@ static const char *const FIELD_NAMES[] = {"x",     "y",        "u",      "v",   
 const char *const *sph_world_field_names(void) { return FIELD_NAMES; }
 
 /* Kernel-summation density sum_j m_j W_ij (self, walls and images included) at the current
- * positions, over the neighbour list of the last step: a check on the continuity density,
- * meaningful where the support is full (away from the free surface). */
+ * positions, over the neighbour list of the last step (the caller checks that it was built
+ * for these particles): a check on the continuity density, meaningful where the support is
+ * full (away from the free surface). */
 static double density_sum(const sph_world *w, int i) {
     double s = w->m[i] * sph_kernel_value(0.0, w->h);
-    if (!w->nb_start) return s;
     for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
         int j = w->nb_j[k];
         s += w->m[j] * sph_kernel_value(hypot(w->x[i] - w->x[j], w->y[i] - w->y[j]), w->h);
@@ -554,6 +554,7 @@ int sph_world_field(const sph_world *w, const char *name, double *out) {
     for (int k = 0; FIELD_NAMES[k]; k++)
         if (!strcmp(name, FIELD_NAMES[k])) f = k;
     if (f < 0) return -1;
+    if (f == 14 && w->n > 0 && w->nb_n != w->n) return -2; /* rho_sum: no list for these particles */
     int c = 0;
     for (int i = 0; i < w->n; i++) {
         if (w->kind[i] != SPH_FLUID) continue;

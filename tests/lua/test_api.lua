@@ -92,6 +92,11 @@ T.case("fill and plate", function()
   T.checkerror("unknown field 'bogus'", "field with an unknown name", w.field, w, "bogus")
   local xs = w:field("x")
   T.check(#xs == 100, "field returns one value per fluid particle")
+  -- rho_sum reads the last step's neighbour list: before any step it is an error, not a
+  -- read of unset memory (it crashed until session 16), and so is a render coloured by it
+  T.checkerror("no neighbour list for the current particles yet", "rho_sum before a step", w.field, w, "rho_sum")
+  T.checkerror("needs the neighbour list of a step", "render by rho_sum before a step", w.render, w,
+               { file = os.tmpname(), color = "rho_sum" })
   local st = w:stats()
   T.check(st.fluid == 100 and st.particles > 100, "stats counts particles")
 end)
@@ -163,6 +168,25 @@ T.case("laws", function()
   T.checkerror("a finite number expected", "a law returning a string", w.step, w)
   T.checkerror("until_t", "run without until_t", w.run, w, {})
   T.checkerror("each", "run with a non-function each", w.run, w, { until_t = 1, each = 3 })
+end)
+
+T.case("rho_sum", function()
+  local w = sph.world{ dx = 0.1, threads = 1 }
+  w:fill{ rect = { 0, 0, 1, 1 }, material = sph.bingham{ mu = 1, tau0 = 1, m = 100 } }
+  w:plate{ rect = { -1, -0.3, 2, 0 } }
+  local top = w:plate{ rect = { -1, 1, 2, 1.3 }, axis = "y" }
+  top:velocity(-1)
+  for _ = 1, 3 do w:step() end
+  -- rho_sum after steps: the bulk's kernel sum within 1 % of rho (a 10 x 10 lattice at
+  -- dx = 0.1; the middle particle has its full support), and an error again after a fill
+  local rs, xs, ys = w:field("rho_sum"), w:field("x"), w:field("y")
+  local mid
+  for j = 1, #xs do if math.abs(xs[j] - 0.55) < 0.06 and math.abs(ys[j] - 0.45) < 0.06 then mid = rs[j] end end
+  T.check(mid and math.abs(mid - 1) < 0.01, "rho_sum in the bulk after a step is the kernel sum, near 1", mid)
+  w:fill{ rect = { 3, 0, 3.5, 0.5 }, material = sph.newtonian{ mu = 1 } }
+  T.checkerror("no neighbour list", "rho_sum after a fill, before the next step", w.field, w, "rho_sum")
+  w:step()
+  T.check(#w:field("rho_sum") == 125, "rho_sum again after the next step")
 end)
 
 T.case("phase timers", function()
