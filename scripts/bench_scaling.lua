@@ -17,9 +17,14 @@
 --   build/sph scripts/bench_scaling.lua [max_n=120000] [runs=3] [steps=60] [warmup=20]
 --                                       [dt=0.025|adaptive] [until_t=] [threads=1,2] [dx=0.0025]
 --                                       [out=out/bench] [density_limit=0.008] [density_solve_tol=1e-3]
---                                       [dt_growth=fixed|eased]
+--                                       [dt_growth=fixed|eased] [from_t=]
 -- until_t: the timed steps run until the time t reaches it instead of `steps` of them (the
 -- same span of the flow for every dt rule: README, *Speed*, t = 0.009 at dx = 1/450).
+-- from_t: after the adaptive warm-up, untimed steps at the timed rule's dt until t reaches
+-- from_t, then the timed steps: every size timed over the same span of the flow. Steps 21-80
+-- at dx/40 are not that: they end at t = 2 dx, 0.0125 at 1/160 but 0.0013 at 1/1400, where
+-- the impulsive start's viscous layer (depth sqrt(nu t), nu = 1) still moves 0.4 dx a step
+-- (README, *Speed*).
 -- density_limit is passed to sph.world (0: no passes beyond density_passes; at 10^6 the
 -- default's extra passes take most of the step: README, *Speed*).
 -- max_n caps the particle count (fluid + wall) of the ladder (default 1.2e5; the 10^6 row is
@@ -42,6 +47,9 @@ local adaptive = o.dt == "adaptive"
 local dt_dx = tonumber(o.dt or 0.025) -- dt = dx / 40 (the adaptive step of this case saw-tooths around 0.02-0.075 dx at 10^5)
 if not adaptive and not (dt_dx and dt_dx > 0) then
   error("bench_scaling: dt must be 'adaptive' or a positive number (dt / dx), got '" .. tostring(o.dt) .. "'")
+end
+if o.from_t ~= nil and not (tonumber(o.from_t) and tonumber(o.from_t) > 0) then
+  error("bench_scaling: from_t must be a positive time, got '" .. tostring(o.from_t) .. "'")
 end
 local outdir = o.out or "out/bench"
 local threads = {}
@@ -84,6 +92,8 @@ local function one_run(r, nthreads, steps)
   -- rule's (above)
   for _ = 1, warmup do w:step() end
   local dt = not adaptive and dt_dx * r.dx or nil
+  local from_t = tonumber(o.from_t)
+  while from_t and w.t < from_t do w:step(dt) end
   local s0 = w:stats()
   local maxerr = 0
   local until_t = tonumber(o.until_t)
@@ -165,6 +175,7 @@ print("other (plates, checks). x step, x sweep: speed-up over 1 thread of the st
 print("step without the two solve phases). ns/pt-step: median over runs of the step's wall time per particle.")
 print(adaptive and "dt: the engine's adaptive step; dt/dx: the plate's mean travel a timed step in dx; ns/dx: ns/pt-step over dt/dx"
   or string.format("dt = %g dx fixed after the warm-up; ns/dx: ns/pt-step over dt/dx (the cost of moving the plate by one dx)", dt_dx))
+if o.from_t then print(string.format("timed from t = %g (untimed steps at the timed dt after the warm-up)", tonumber(o.from_t))) end
 print("p-sol/st: pressure-type solves a step (the pressure, then one per density pass); rhoerr: the largest max density")
 print("error after a timed step (over density_tol, 0.5 %, a step takes a second density pass)")
 

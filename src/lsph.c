@@ -511,6 +511,7 @@ static int w_stats(lua_State *L) {
     SETI("density_passes", s.density_passes);
     SETI("density_fallbacks", s.density_fallbacks);
     SETI("density_descents", s.density_descents);
+    SETI("density_skipped", s.density_skipped);
     SETI("wall_contacts", s.wall_contacts);
     SETI("floating_walls", s.floating_walls);
     SETN("kinetic_energy", s.kinetic_energy);

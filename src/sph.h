@@ -193,6 +193,9 @@ typedef struct sph_stats {
     long density_fallbacks;   /* steps whose passes stalled above density_limit and
                                  took a GMRES correction after them (density.c) */
     long density_descents;    /* steepest-descent moves so far (density_descent)  */
+    long density_skipped;     /* steps so far that took one density pass where the error
+                                 asked for more, because a later pass had just moved
+                                 nothing (step length 0; density.c)                  */
     int floating_walls;       /* active walls the fluid does not reach, left out of
                                  the last pressure system (pressure.c)            */
     long wall_contacts;       /* fluid particles held 0.1 dx off a plate so far

@@ -521,7 +521,7 @@ void sph_world_stats(const sph_world *w, sph_stats *s) {
     s->max_speed = sqrt(umax);
     s->max_eta = etamax;
     s->yielded = yielded;
-    long pairs = w->nb_start ? w->nb_start[w->n] : 0;
+    long pairs = w->n > 0 && w->nb_n == w->n ? w->nb_start[w->n] : 0; /* no list yet: 0 */
     int rows = 0;
     for (int i = 0; i < w->n; i++) rows += w->active[i];
     s->neighbours_mean = rows ? (double)pairs / rows : 0.0;
