@@ -62,7 +62,7 @@ static const char *check_params(const sph_params *p) {
         "pressure_predictor must be in [0, 1]", "density_gmres must be 0 or 1",
         "pressure_gradient must be SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE", "wall_curved must be 0 or 1",
         "projection_passes must be in [0, 10]", "density_descent must be in [0, 100]", "visc_tol must be in (0, 1)",
-        "dt_eased must be 0 or 1"};
+        "dt_eased must be 0 or 1", "density_wait must be in [0, 1000]"};
     if (!(p->dx > 0 && isfinite(p->dx))) return bad[0];
     if (!(p->h >= 0 && isfinite(p->h))) return bad[1];
     if (!(p->rho0 > 0 && isfinite(p->rho0))) return bad[2];
@@ -90,6 +90,7 @@ static const char *check_params(const sph_params *p) {
     if (!(p->density_descent >= 0 && p->density_descent <= 100)) return bad[22];
     if (!(p->visc_tol > 0 && p->visc_tol < 1)) return bad[23];
     if (p->dt_eased != 0 && p->dt_eased != 1) return bad[24];
+    if (!(p->density_wait >= 0 && p->density_wait <= 1000)) return bad[25];
     return 0;
 }
 
