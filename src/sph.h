@@ -100,8 +100,8 @@ typedef struct sph_params {
                               compact Laplacian leaves (D G != L), each one more solve of
                               the pressure system per step (pressure.c); default 0    */
     int density_wait;      /* in [0, 1000]: after a density pass (not the first) of step
-                              length 0, this many steps take one pass where density_tol
-                              asks for more (doubling while it recurs, up to 16 x;
+                              length 0, this many steps take one pass (doubling while
+                              it recurs, up to 16 x; the descent follows above density_limit;
                               density.c); 0 (default): none (a pass of step length 0
                               still ends the step's passes: the next would repeat it)  */
     int dt_eased;          /* 1: dt's growth eases from 25 % a step at half density_tol to
