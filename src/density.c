@@ -57,7 +57,7 @@ static void diffuse_density(sph_world *w) {
  * source gamma (rho0 - rho_i) / rho0, warm-started from the last phi; the particles move by
  * -grad phi / rho (the pressure's symmetric gradient) and their density follows by
  * continuity. Walls stay; free-surface particles hold phi = 0. */
-static int density_pass(sph_world *w, int pass);
+static int density_pass(sph_world *w, int pass, double *alpha);
 
 /* Up to density_passes corrections while the error stays above density_tol. One pass
  * removes the smooth part of the error, not all of it: the matrix is the compact Laplacian
@@ -167,6 +167,9 @@ static void descend_if_above(sph_world *w) {
 #define FALLBACK_USELESS 0.95
 #define FALLBACK_WAIT 10
 #define FALLBACK_WAIT_MAX 640
+/* the next wait after a useless try: first, then doubling up to max (the GMRES fallback's
+ * and density_wait's) */
+static int next_wait(int wait, int first, int max) { return wait == 0 ? first : wait < max ? 2 * wait : wait; }
 int sph_density_correct(sph_world *w) {
     if (w->par.density_diffusion > 0) diffuse_density(w);
     /* density_correction = "gmres": its directions, then the descent (below) when they
@@ -214,12 +217,13 @@ int sph_density_correct(sph_world *w) {
             w->st.density_skipped++;
             break;
         }
-        if (density_pass(w, q)) return -1;
+        double alpha;
+        if (density_pass(w, q, &alpha)) return -1;
         w->st.density_passes++;
-        if (q > 0 && w->pass_alpha == 0.0) {
-            int w0 = w->par.density_wait, wait = w->passes_wait;
+        if (q > 0 && alpha == 0.0) {
+            int w0 = w->par.density_wait;
             if (w0 > 0) {
-                w->passes_wait = wait == 0 ? w0 : wait < 16 * w0 ? 2 * wait : wait;
+                w->passes_wait = next_wait(w->passes_wait, w0, 16 * w0);
                 w->passes_after = w->steps + w->passes_wait;
             }
             break;
@@ -260,8 +264,7 @@ int sph_density_correct(sph_world *w) {
         if (density_gmres(w)) return -1;
         double left = w->st.density_alpha; /* L2 error left over the error before */
         if (left > FALLBACK_USELESS) { /* waits 10, 20, 40, ..., 640, 640, ... steps */
-            int wait = w->fallback_wait;
-            w->fallback_wait = wait == 0 ? FALLBACK_WAIT : wait < FALLBACK_WAIT_MAX ? 2 * wait : wait;
+            w->fallback_wait = next_wait(w->fallback_wait, FALLBACK_WAIT, FALLBACK_WAIT_MAX);
             w->fallback_after = w->steps + w->fallback_wait;
         } else {
             w->fallback_wait = 0;
@@ -326,10 +329,11 @@ static int correction_solve(sph_world *w, double *f, double *dx, double *dy) {
     return 0;
 }
 
-static int density_pass(sph_world *w, int pass) {
+/* *alpha: the pass's step length (1 when there was nothing to move) */
+static int density_pass(sph_world *w, int pass, double *alpha_out) {
     double gamma = w->par.density_relax, rho0 = w->par.rho0;
     int n = w->n, nrows = w->nrows;
-    w->pass_alpha = 1.0; /* nothing to move counts as a pass that did its work */
+    *alpha_out = 1.0;
     if (gamma <= 0 || nrows == 0) return 0;
     double bmax = 0.0;
 #pragma omp parallel for schedule(static) num_threads(w->threads) reduction(max : bmax)
@@ -367,7 +371,7 @@ static int density_pass(sph_world *w, int pass) {
         den += d[i] * d[i] / rho0;
     }
     double alpha = den > 0.0 ? fmax(0.0, fmin(1.0, num / den)) : 0.0;
-    w->pass_alpha = alpha;
+    *alpha_out = alpha;
     w->st.max_density_error = displace(w, dx, dy, d, alpha);
     w->st.density_alpha = fmin(w->st.density_alpha, alpha);
     return 0;

@@ -262,7 +262,6 @@ struct sph_world {
     int fallback_wait;         /* the last wait set (0: the last fallback helped)    */
     long passes_after;         /* density.c: one density pass a step before this step */
     int passes_wait;           /* the last such wait (0: the last later pass moved)  */
-    double pass_alpha;         /* the last density pass's step length                */
     int *row_of;               /* row -> particle                                   */
 
     double t, dt, wall_time;

@@ -173,13 +173,18 @@ T.case("laws", function()
   T.checkerror("each", "run with a non-function each", w.run, w, { until_t = 1, each = 3 })
 end)
 
-T.case("rho_sum", function()
+-- a 10 x 10 Bingham box between two plates, the upper one at V = -1, after three steps
+local function squeezed_box()
   local w = sph.world{ dx = 0.1, threads = 1 }
   w:fill{ rect = { 0, 0, 1, 1 }, material = sph.bingham{ mu = 1, tau0 = 1, m = 100 } }
   w:plate{ rect = { -1, -0.3, 2, 0 } }
-  local top = w:plate{ rect = { -1, 1, 2, 1.3 }, axis = "y" }
-  top:velocity(-1)
+  w:plate{ rect = { -1, 1, 2, 1.3 }, axis = "y" }:velocity(-1)
   for _ = 1, 3 do w:step() end
+  return w
+end
+
+T.case("rho_sum", function()
+  local w = squeezed_box()
   -- rho_sum after steps: the bulk's kernel sum within 1 % of rho (a 10 x 10 lattice at
   -- dx = 0.1; the middle particle has its full support), and an error again after a fill
   local rs, xs, ys = w:field("rho_sum"), w:field("x"), w:field("y")
@@ -193,12 +198,7 @@ T.case("rho_sum", function()
 end)
 
 T.case("phase timers", function()
-  local w = sph.world{ dx = 0.1, threads = 1 }
-  w:fill{ rect = { 0, 0, 1, 1 }, material = sph.bingham{ mu = 1, tau0 = 1, m = 100 } }
-  w:plate{ rect = { -1, -0.3, 2, 0 } }
-  local top = w:plate{ rect = { -1, 1, 2, 1.3 }, axis = "y" }
-  top:velocity(-1)
-  for _ = 1, 3 do w:step() end
+  local w = squeezed_box()
   local st = w:stats()
   local names = { "sort", "neighbours", "rheology", "viscous_assembly", "viscous_solve",
                   "pressure_assembly", "pressure_solve", "correction", "shifting", "other" }
