@@ -57,7 +57,7 @@ static void diffuse_density(sph_world *w) {
  * source gamma (rho0 - rho_i) / rho0, warm-started from the last phi; the particles move by
  * -grad phi / rho (the pressure's symmetric gradient) and their density follows by
  * continuity. Walls stay; free-surface particles hold phi = 0. */
-static int density_pass(sph_world *w, int pass, double *alpha);
+static int density_pass(sph_world *w, int pass, int probe, double *alpha);
 
 /* Up to density_passes corrections while the error stays above density_tol. One pass
  * removes the smooth part of the error, not all of it: the matrix is the compact Laplacian
@@ -218,8 +218,10 @@ int sph_density_correct(sph_world *w) {
             break;
         }
         double alpha;
-        if (density_pass(w, q, &alpha)) return -1;
+        int probe = q > 0 && w->later_stalled && w->par.density_probe > 0;
+        if (density_pass(w, q, probe, &alpha)) return -1;
         w->st.density_passes++;
+        if (q > 0) w->later_stalled = alpha == 0.0;
         if (q > 0 && alpha == 0.0) {
             int w0 = w->par.density_wait;
             if (w0 > 0) {
@@ -304,17 +306,16 @@ static double displace(sph_world *w, const double *dx, const double *dy, const d
 }
 
 /* The density correction's solve: the pressure matrix with the right-hand side and start in
- * w->b and w->sol, to density_solve_tol; the solution into f (ghosts synced) and the
+ * w->b and w->sol, to the relative residual tol; the solution into f (ghosts synced) and the
  * displacement -grad f / rho (symmetric form) of every fluid particle into (dx, dy). */
-static int correction_solve(sph_world *w, double *f, double *dx, double *dy) {
+static int correction_solve(sph_world *w, double tol, double *f, double *dx, double *dy) {
     int n = w->n;
-    sph_solve_result res = sph_solver_pcg(&w->solver, &w->A, w->b, w->sol, w->par.density_solve_tol,
-                                          w->par.max_iter, w->threads);
+    sph_solve_result res = sph_solver_pcg(&w->solver, &w->A, w->b, w->sol, tol, w->par.max_iter, w->threads);
     if (!res.converged)
         return sph_world_fail(w,
                               "density correction solver did not converge at step %ld (t = %g): "
                               "relative residual %.3g after %d iterations (tolerance %g, %d unknowns)",
-                              w->steps, w->t, res.residual, res.iterations, w->par.density_solve_tol, w->nrows);
+                              w->steps, w->t, res.residual, res.iterations, tol, w->nrows);
     w->st.solver_iterations += res.iterations;
     w->st.solver_iterations_total += res.iterations;
     sph_lap(w, SPH_PHASE_PRESSURE_SOLVE);
@@ -329,10 +330,27 @@ static int correction_solve(sph_world *w, double *f, double *dx, double *dy) {
     return 0;
 }
 
-/* *alpha: the pass's step length (1 when there was nothing to move) */
-static int density_pass(sph_world *w, int pass, double *alpha_out) {
+/* The step length along the displacement (dx, dy) (density_pass), its continuity change
+ * into d. */
+static double step_length(sph_world *w, const double *dx, const double *dy, double *d) {
+    int n = w->n;
+    double rho0 = w->par.rho0, num = 0.0, den = 0.0;
+#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : num, den)
+    for (int i = 0; i < n; i++) {
+        d[i] = 0.0;
+        if (w->kind[i] != SPH_FLUID || w->surf[i]) continue;
+        d[i] = sph_field_div(w, dx, dy, i);
+        num -= (w->rho[i] / rho0 - 1.0) * d[i];
+        den += d[i] * d[i] / rho0;
+    }
+    return den > 0.0 ? fmax(0.0, fmin(1.0, num / den)) : 0.0;
+}
+
+/* *alpha: the pass's step length (1 when there was nothing to move). probe (a later pass,
+ * after one of step length 0; density_probe): the direction of a loose solve first. */
+static int density_pass(sph_world *w, int pass, int probe, double *alpha_out) {
     double gamma = w->par.density_relax, rho0 = w->par.rho0;
-    int n = w->n, nrows = w->nrows;
+    int nrows = w->nrows;
     *alpha_out = 1.0;
     if (gamma <= 0 || nrows == 0) return 0;
     double bmax = 0.0;
@@ -347,8 +365,20 @@ static int density_pass(sph_world *w, int pass, double *alpha_out) {
     sph_lap(w, SPH_PHASE_CORRECTION);
     if (bmax == 0.0) return 0;
     if (w->pin >= 0) sph_pressure_make_compatible(w, -w->m[w->pin] * gamma * (rho0 - w->rho[w->pin]) / rho0);
-    double *f = pass ? w->dp : w->phi, *dx = w->xs, *dy = w->ys;
-    if (correction_solve(w, f, dx, dy)) return -1;
+    double *f = pass ? w->dp : w->phi, *dx = w->xs, *dy = w->ys, *d = w->sb;
+    /* PROBE */
+    if (probe) {
+        w->st.density_probes++;
+        if (correction_solve(w, w->par.density_probe, f, dx, dy)) return -1;
+        if (step_length(w, dx, dy, d) == 0.0) {
+            w->st.density_probes_ended++;
+            *alpha_out = 0.0;
+            w->st.density_alpha = 0.0;
+            return 0;
+        }
+        for (int r = 0; r < nrows; r++) w->sol[r] = 0.0; /* the full solve, as without the probe */
+    }
+    if (correction_solve(w, w->par.density_solve_tol, f, dx, dy)) return -1;
     /* The step length: the density change is linear in the displacement, d_i =
      * sph_field_div(dx, dy), so alpha = -sum e_i d_i / sum d_i^2 (clamped to [0, 1]; e
      * the density error, over interior fluid) is the one that leaves the least squared
@@ -361,16 +391,7 @@ static int density_pass(sph_world *w, int pass, double *alpha_out) {
      * step 1150 (h = 0.405), where the projection itself went unstable (see the top of
      * the file). On every stability case but the thin film alpha stays 1: the same
      * figures to the digit. */
-    double *d = w->sb, num = 0.0, den = 0.0;
-#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : num, den)
-    for (int i = 0; i < n; i++) {
-        d[i] = 0.0;
-        if (w->kind[i] != SPH_FLUID || w->surf[i]) continue;
-        d[i] = sph_field_div(w, dx, dy, i);
-        num -= (w->rho[i] / rho0 - 1.0) * d[i];
-        den += d[i] * d[i] / rho0;
-    }
-    double alpha = den > 0.0 ? fmax(0.0, fmin(1.0, num / den)) : 0.0;
+    double alpha = step_length(w, dx, dy, d);
     *alpha_out = alpha;
     w->st.max_density_error = displace(w, dx, dy, d, alpha);
     w->st.density_alpha = fmin(w->st.density_alpha, alpha);
@@ -443,7 +464,7 @@ static int density_gmres(sph_world *w) {
         }
         sph_lap(w, SPH_PHASE_CORRECTION);
         if (w->pin >= 0) sph_pressure_make_compatible(w, w->m[w->pin] * vk[w->pin]);
-        if (correction_solve(w, w->dp, dx, dy)) return -1;
+        if (correction_solve(w, w->par.density_solve_tol, w->dp, dx, dy)) return -1;
         if (m == 0) {
 #pragma omp parallel for schedule(static) num_threads(th)
             for (int i = 0; i < nt; i++) w->phi[i] = beta * w->dp[i];

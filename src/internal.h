@@ -262,6 +262,7 @@ struct sph_world {
     int fallback_wait;         /* the last wait set (0: the last fallback helped)    */
     long passes_after;         /* density.c: one density pass a step before this step */
     int passes_wait;           /* the last such wait (0: the last later pass moved)  */
+    int later_stalled;         /* density.c: the last later pass had step length 0   */
     int *row_of;               /* row -> particle                                   */
 
     double t, dt, wall_time;

@@ -169,7 +169,7 @@ static int l_world(lua_State *L) {
     static const char *const keys[] = {"dx", "h", "rho", "gravity", "viscosity", "shifting",
                                        "cfl", "cvisc", "cforce", "dt_max", "periodic", "symmetry",
                                        "threads", "tol", "visc_tol", "max_iter", "surface", "density_relax",
-                                       "density_tol", "density_passes", "density_limit", "density_diffusion", "density_solve_tol", "pressure_predictor", "solver", "density_correction", "pressure_gradient", "wall", "projection_passes", "density_descent", "dt_growth", "density_wait", 0};
+                                       "density_tol", "density_passes", "density_limit", "density_diffusion", "density_solve_tol", "pressure_predictor", "solver", "density_correction", "pressure_gradient", "wall", "projection_passes", "density_descent", "dt_growth", "density_wait", "density_probe", 0};
     luaL_checktype(L, 1, LUA_TTABLE);
     sph_lua_opt_only(L, 1, "world", keys);
     sph_params p;
@@ -198,6 +198,7 @@ static int l_world(lua_State *L) {
     if (!(dwait >= 0 && dwait <= 1000 && dwait == floor(dwait)))
         luaL_error(L, "bad argument to 'world' (density_wait: an integer in [0, 1000] expected, got %f)", dwait);
     p.density_wait = (int)dwait;
+    p.density_probe = sph_lua_opt_number(L, 1, "world", "density_probe", p.density_probe);
     p.density_diffusion = sph_lua_opt_number(L, 1, "world", "density_diffusion", p.density_diffusion);
     p.density_solve_tol = sph_lua_opt_number(L, 1, "world", "density_solve_tol", p.density_solve_tol);
     p.pressure_predictor = sph_lua_opt_number(L, 1, "world", "pressure_predictor", p.pressure_predictor);
@@ -516,6 +517,8 @@ static int w_stats(lua_State *L) {
     SETI("density_fallbacks", s.density_fallbacks);
     SETI("density_descents", s.density_descents);
     SETI("density_skipped", s.density_skipped);
+    SETI("density_probes", s.density_probes);
+    SETI("density_probes_ended", s.density_probes_ended);
     SETI("wall_contacts", s.wall_contacts);
     SETI("floating_walls", s.floating_walls);
     SETN("kinetic_energy", s.kinetic_energy);

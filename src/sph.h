@@ -104,6 +104,11 @@ typedef struct sph_params {
                               it recurs, up to 16 x; the descent follows above density_limit;
                               density.c); 0 (default): none (a pass of step length 0
                               still ends the step's passes: the next would repeat it)  */
+    double density_probe;  /* in [0, 1): after a density pass (not the first) of step
+                              length 0, the next such pass is first tried on a solve to
+                              this relative residual; if its direction cannot lower the
+                              error the pass ends there, else it is solved in full, as
+                              without the probe (density.c); default 0.1, 0: off      */
     int dt_eased;          /* 1: dt's growth eases from 25 % a step at half density_tol to
                               none from 95 % of it (timestep.c: no saw-tooth, fewer
                               density passes; faster at 10^5 particles, more steps in
@@ -201,6 +206,10 @@ typedef struct sph_stats {
     long density_skipped;     /* steps so far that took one density pass where the error
                                  asked for more, because a later pass had just moved
                                  nothing (step length 0; density.c)                  */
+    long density_probes;      /* later density passes tried first on a loose solve
+                                 (density_probe) so far                              */
+    long density_probes_ended; /* of those, the ones whose direction could not lower
+                                 the error: the pass ended without its full solve    */
     int floating_walls;       /* active walls the fluid does not reach, left out of
                                  the last pressure system (pressure.c)            */
     long wall_contacts;       /* fluid particles held 0.1 dx off a plate so far

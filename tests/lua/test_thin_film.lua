@@ -67,4 +67,31 @@ T.case("film started thin, density_wait = 10: later passes that move nothing wai
   T.check(w0:stats().density_skipped == 0, "density_wait = 0 (the default) holds no step to one pass", w0:stats().density_skipped)
 end)
 
+-- density_probe (default 0.1): after a later pass of step length 0, the next later pass is
+-- first tried on a solve to a relative residual of 0.1; if that direction cannot lower the
+-- error the pass ends there (as the full pass would have, moving nothing), else the full
+-- solve runs from zero as without the probe. Where the probe agrees with the full pass the
+-- run is the same bit for bit. Measured on this film (300 steps, one thread): 175 probes,
+-- 171 of them ended the pass, the same positions to the bit as density_probe = 0, 3,794
+-- pressure-type iterations against 4,250.
+T.case("film started thin, density_probe: stalled later passes end on a loose solve, the same run", function()
+  local function run(probe)
+    local w = squeeze.build{ dx = 1 / 40, Re = 1, Bn = 0, mode = "velocity", width = 1.6, height = 0.2, h_min = 0.17,
+                             world = { threads = o.threads or 1, density_probe = probe } }
+    for _ = 1, 300 do w:step() end
+    return w, w:stats()
+  end
+  local wa, sa = run(nil)
+  local wb, sb = run(0)
+  local xa, xb, ya, yb = wa:field("x"), wb:field("x"), wa:field("y"), wb:field("y")
+  local same = #xa == #xb
+  for k = 1, #xa do same = same and xa[k] == xb[k] and ya[k] == yb[k] end
+  print(string.format("# film started thin, 300 steps: %d probes, %d ended the pass; pressure-type iterations %d (probe) against %d (density_probe = 0)",
+    sa.density_probes, sa.density_probes_ended, sa.solver_iterations_total, sb.solver_iterations_total))
+  T.check(sa.density_probes_ended > 0, "the probe ends stalled later passes on this film", sa.density_probes_ended)
+  T.check(sb.density_probes == 0, "density_probe = 0 makes no probe", sb.density_probes)
+  T.check(same, "the run with the probe is the run without it, bit for bit (positions after 300 steps)")
+  T.below(sa.solver_iterations_total, sb.solver_iterations_total, "the probe saves pressure-type iterations")
+end)
+
 T.done()
