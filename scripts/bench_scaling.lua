@@ -18,6 +18,7 @@
 --                                       [dt=0.025|adaptive] [until_t=] [threads=1,2] [dx=0.0025]
 --                                       [out=out/bench] [density_limit=0.008] [density_solve_tol=1e-3]
 --                                       [dt_growth=fixed|eased] [from_t=] [density_wait=0]
+--                                       [density_gradient=symmetric|difference]
 -- until_t: the timed steps run until the time t reaches it instead of `steps` of them (the
 -- same span of the flow for every dt rule: README, *Speed*, t = 0.009 at dx = 1/450).
 -- from_t: after the adaptive warm-up, untimed steps at the timed rule's dt until t reaches
@@ -69,7 +70,7 @@ local function build(k, nthreads)
   return squeeze.build{ dx = 1 / k, Re = 1, Bn = 5, M = 800, mode = "velocity", V = 1,
                         world = { threads = nthreads, max_iter = 100000, density_limit = o.density_limit,
                                   density_solve_tol = o.density_solve_tol, dt_growth = o.dt_growth,
-                                  density_wait = o.density_wait } }
+                                  density_wait = o.density_wait, density_gradient = o.density_gradient } }
 end
 
 -- particles (fluid + wall) of each rung, from a world that is built and dropped

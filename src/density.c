@@ -320,11 +320,14 @@ static int correction_solve(sph_world *w, double tol, double *f, double *dx, dou
     w->st.solver_iterations_total += res.iterations;
     sph_lap(w, SPH_PHASE_PRESSURE_SOLVE);
     sph_pressure_scatter(w, w->sol, f);
-    sph_pressure_neg_grad_prepare(w, f, w->sa);
+    int diff = w->par.density_gradient == SPH_GRAD_DIFFERENCE;
+    if (!diff) sph_pressure_neg_grad_prepare(w, f, w->sa);
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int i = 0; i < n; i++) {
         dx[i] = dy[i] = 0.0;
-        if (w->kind[i] == SPH_FLUID) sph_neg_grad(w, w->sa, i, &dx[i], &dy[i]);
+        if (w->kind[i] != SPH_FLUID) continue;
+        if (diff) sph_neg_grad_difference(w, f, i, &dx[i], &dy[i]);
+        else sph_neg_grad(w, w->sa, i, &dx[i], &dy[i]);
     }
     sph_boundary_sync(w, dx, dy, 1);
     return 0;

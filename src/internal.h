@@ -362,6 +362,25 @@ static inline void sph_neg_grad(const sph_world *w, const double *fr, int i, dou
     *ay = gy;
 }
 
+/* -(grad f)_i / rho_i in the renormalised difference form L_i sum_j V_j (f_j - f_i) grad W_ij
+ * (Lind et al. 2012): exact for a linear f, whatever the particle disorder, and blind to a
+ * uniform level of f (f synced on ghosts). */
+static inline void sph_neg_grad_difference(const sph_world *w, const double *f, int i, double *ax, double *ay) {
+    double gx = 0.0, gy = 0.0, fi = f[i];
+    const int *nj = w->nb_j;
+    const double *vol = w->vol, *ngx = w->nb_gx, *ngy = w->nb_gy;
+    int k0 = w->nb_start[i], k1 = w->nb_start[i + 1];
+#pragma omp simd reduction(+ : gx, gy)
+    for (int k = k0; k < k1; k++) {
+        double c = vol[nj[k]] * (f[nj[k]] - fi);
+        gx += c * ngx[k];
+        gy += c * ngy[k];
+    }
+    double ir = 1.0 / w->rho[i];
+    *ax = -ir * (w->lxx[i] * gx + w->lxy[i] * gy);
+    *ay = -ir * (w->lxy[i] * gx + w->lyy[i] * gy);
+}
+
 /* shifting.c */
 void sph_shifting_apply(sph_world *w, double dt);
 

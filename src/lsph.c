@@ -169,7 +169,7 @@ static int l_world(lua_State *L) {
     static const char *const keys[] = {"dx", "h", "rho", "gravity", "viscosity", "shifting",
                                        "cfl", "cvisc", "cforce", "dt_max", "periodic", "symmetry",
                                        "threads", "tol", "visc_tol", "max_iter", "surface", "density_relax",
-                                       "density_tol", "density_passes", "density_limit", "density_diffusion", "density_solve_tol", "pressure_predictor", "solver", "density_correction", "pressure_gradient", "wall", "projection_passes", "density_descent", "dt_growth", "density_wait", "density_probe", 0};
+                                       "density_tol", "density_passes", "density_limit", "density_diffusion", "density_solve_tol", "pressure_predictor", "solver", "density_correction", "pressure_gradient", "wall", "projection_passes", "density_descent", "dt_growth", "density_wait", "density_probe", "density_gradient", 0};
     luaL_checktype(L, 1, LUA_TTABLE);
     sph_lua_opt_only(L, 1, "world", keys);
     sph_params p;
@@ -223,6 +223,9 @@ static int l_world(lua_State *L) {
     p.pressure_gradient = opt_choice(L, "pressure_gradient", "symmetric", "difference",
                                      p.pressure_gradient == SPH_GRAD_DIFFERENCE)
                               ? SPH_GRAD_DIFFERENCE : SPH_GRAD_SYMMETRIC;
+    p.density_gradient = opt_choice(L, "density_gradient", "symmetric", "difference",
+                                    p.density_gradient == SPH_GRAD_DIFFERENCE)
+                             ? SPH_GRAD_DIFFERENCE : SPH_GRAD_SYMMETRIC;
     p.wall_curved = opt_choice(L, "wall", "linear", "curved", p.wall_curved);
     p.dt_eased = opt_choice(L, "dt_growth", "fixed", "eased", p.dt_eased);
     p.solver = opt_choice(L, "solver", "amg", "jacobi", p.solver == SPH_SOLVER_JACOBI) ? SPH_SOLVER_JACOBI

@@ -358,7 +358,6 @@ int sph_pressure_dense_solve(int n, double *a, int lda, double *x) {
 #undef A_
 
 static void shepard(sph_world *w, double *p, double *pt);
-static inline void neg_grad_difference(const sph_world *w, const double *f, int i, double *ax, double *ay);
 
 /* The velocity field a pressure field p makes (ghosts synced): for the flow (plate < 0), u* -
  * dt grad p / rho on fluid particles and the source's velocity on walls; for a loaded
@@ -374,7 +373,7 @@ static void projected_velocity(sph_world *w, const double *p, double dt, int pla
             continue;
         }
         double au, av;
-        if (diff) neg_grad_difference(w, p, i, &au, &av);
+        if (diff) sph_neg_grad_difference(w, p, i, &au, &av);
         else sph_neg_grad(w, w->sa, i, &au, &av);
         ru[i] = (plate < 0 ? w->us[i] : 0.0) + dt * au;
         rv[i] = (plate < 0 ? w->vs[i] : 0.0) + dt * av;
@@ -695,24 +694,6 @@ void sph_pressure_neg_grad_prepare(sph_world *w, const double *f, double *fr) {
 }
 
 
-/* -(grad f)_i / rho_i in the renormalised difference form L_i sum_j V_j (f_j - f_i) grad W_ij
- * (Lind et al. 2012): exact for a linear f, whatever the particle disorder, and blind to a
- * uniform level of f (f synced on ghosts). */
-static inline void neg_grad_difference(const sph_world *w, const double *f, int i, double *ax, double *ay) {
-    double gx = 0.0, gy = 0.0, fi = f[i];
-    const int *nj = w->nb_j;
-    const double *vol = w->vol, *ngx = w->nb_gx, *ngy = w->nb_gy;
-    int k0 = w->nb_start[i], k1 = w->nb_start[i + 1];
-#pragma omp simd reduction(+ : gx, gy)
-    for (int k = k0; k < k1; k++) {
-        double c = vol[nj[k]] * (f[nj[k]] - fi);
-        gx += c * ngx[k];
-        gy += c * ngy[k];
-    }
-    double ir = 1.0 / w->rho[i];
-    *ax = -ir * (w->lxx[i] * gx + w->lxy[i] * gy);
-    *ay = -ir * (w->lxy[i] * gx + w->lyy[i] * gy);
-}
 
 /* -grad p~ / rho of every fluid particle for the viscous step's pressure predictor, p~ the
  * last step's pressure at the current positions, kernel-averaged (Shepard) over fluid and
@@ -763,7 +744,7 @@ void sph_pressure_predictor(sph_world *w, double *ax, double *ay) {
     shepard(w, w->p, pt);
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int i = 0; i < n; i++)
-        if (w->kind[i] == SPH_FLUID) neg_grad_difference(w, pt, i, &ax[i], &ay[i]);
+        if (w->kind[i] == SPH_FLUID) sph_neg_grad_difference(w, pt, i, &ax[i], &ay[i]);
 }
 
 /* Continuity over the step, rho_i += dt * sph_field_div(u^{n+1}) for interior fluid;
@@ -801,7 +782,7 @@ void sph_pressure_correct(sph_world *w, double dt) {
             continue;
         }
         double au, av;
-        if (diff) neg_grad_difference(w, w->p, i, &au, &av);
+        if (diff) sph_neg_grad_difference(w, w->p, i, &au, &av);
         else sph_neg_grad(w, w->sa, i, &au, &av);
         w->us[i] += dt * au;
         w->vs[i] += dt * av;

@@ -92,6 +92,12 @@ typedef struct sph_params {
     int pressure_gradient; /* the projection's gradient: SPH_GRAD_SYMMETRIC (default,
                               momentum-conserving) or SPH_GRAD_DIFFERENCE (first-order
                               consistent: renormalised sum V_j (p_j - p_i) grad W)    */
+    int density_gradient;  /* the density correction's displacement -grad phi / rho:
+                              SPH_GRAD_SYMMETRIC (default: -sum_j m_j (phi_i / rho_i^2 +
+                              phi_j / rho_j^2) grad W_ij, whose phi_i sum_j grad W_ij
+                              term next to the free surface grows with phi itself) or
+                              SPH_GRAD_DIFFERENCE (renormalised, blind to a level of
+                              phi: large runs; thin films less accurate; density.c)   */
     int density_descent;   /* in [0, 100]: when the passes leave the error above
                               density_limit, up to this many steepest-descent moves of
                               the particles down the density error's gradient
