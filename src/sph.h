@@ -95,7 +95,8 @@ typedef struct sph_params {
     int density_gradient;  /* the density correction's displacement -grad phi / rho:
                               SPH_GRAD_SYMMETRIC (default: -sum_j m_j (phi_i / rho_i^2 +
                               phi_j / rho_j^2) grad W_ij, whose phi_i sum_j grad W_ij
-                              term next to the free surface grows with phi itself) or
+                              term, where the support is cut or the particles are
+                              disordered, grows with phi itself) or
                               SPH_GRAD_DIFFERENCE (renormalised, blind to a level of
                               phi: large runs; thin films less accurate; density.c)   */
     int density_descent;   /* in [0, 100]: when the passes leave the error above
