@@ -57,7 +57,7 @@ static void diffuse_density(sph_world *w) {
  * source gamma (rho0 - rho_i) / rho0, warm-started from the last phi; the particles move by
  * -grad phi / rho (the pressure's symmetric gradient) and their density follows by
  * continuity. Walls stay; free-surface particles hold phi = 0. */
-static int density_pass(sph_world *w, int pass, int probe, double *alpha);
+static int density_pass(sph_world *w, int pass, double *alpha);
 
 /* Up to density_passes corrections while the error stays above density_tol. One pass
  * removes the smooth part of the error, not all of it: the matrix is the compact Laplacian
@@ -218,8 +218,7 @@ int sph_density_correct(sph_world *w) {
             break;
         }
         double alpha;
-        int probe = q > 0 && w->later_stalled && w->par.density_probe > 0;
-        if (density_pass(w, q, probe, &alpha)) return -1;
+        if (density_pass(w, q, &alpha)) return -1;
         w->st.density_passes++;
         if (q > 0) w->later_stalled = alpha == 0.0;
         if (q > 0 && alpha == 0.0) {
@@ -360,9 +359,9 @@ static double step_length(sph_world *w, const double *dx, const double *dy, doub
     return den > 0.0 ? fmax(0.0, fmin(1.0, num / den)) : 0.0;
 }
 
-/* *alpha: the pass's step length (1 when there was nothing to move). probe (a later pass,
- * after one of step length 0; density_probe): the direction of a loose solve first. */
-static int density_pass(sph_world *w, int pass, int probe, double *alpha_out) {
+/* *alpha: the pass's step length (1 when there was nothing to move). A later pass after
+ * one of step length 0 (density_probe) tries the direction of a loose solve first. */
+static int density_pass(sph_world *w, int pass, double *alpha_out) {
     double gamma = w->par.density_relax, rho0 = w->par.rho0;
     int nrows = w->nrows;
     *alpha_out = 1.0;
@@ -388,7 +387,7 @@ static int density_pass(sph_world *w, int pass, int probe, double *alpha_out) {
      * solve): the paper's squeeze at 10^6, 60 of 60; the stability suite's thin film to
      * h = 0.15, no probe of 0 where the full pass moved in 10,380 passes (at 0.5, 2 of 60
      * at 10^6). 10^6, steps 21-80: 13.3 -> 11.4 pressure-type iterations a step. */
-    if (probe) {
+    if (pass > 0 && w->later_stalled && w->par.density_probe > 0) {
         w->st.density_probes++;
         if (correction_solve(w, w->par.density_probe, f, dx, dy)) return -1;
         if (step_length(w, dx, dy, d) == 0.0) {
