@@ -18,7 +18,7 @@
 --                                       [dt=0.025|adaptive] [until_t=] [threads=1,2] [dx=0.0025]
 --                                       [out=out/bench] [density_limit=0.008] [density_solve_tol=1e-3]
 --                                       [dt_growth=fixed|eased] [from_t=] [density_wait=0]
---                                       [density_gradient=symmetric|difference]
+--                                       [density_gradient=auto|symmetric|difference]
 -- until_t: the timed steps run until the time t reaches it instead of `steps` of them (the
 -- same span of the flow for every dt rule: README, *Speed*, t = 0.009 at dx = 1/450).
 -- from_t: after the adaptive warm-up, untimed steps at the timed rule's dt until t reaches
@@ -109,6 +109,7 @@ local function one_run(r, nthreads, steps)
   local wall = s1.wall_time - s0.wall_time
   local res = { n = n, ns = 1e9 * wall / (n * r.particles), wall = wall, dtdx = (s1.t - s0.t) / (n * r.dx), maxerr = maxerr,
                 psolves = (s1.pressure_solves - s0.pressure_solves) / n,
+                switches = (s1.density_switches - s0.density_switches) / n,
                 piter = (s1.solver_iterations_total - s0.solver_iterations_total) / n,
                 viter = (s1.visc_iterations_total - s0.visc_iterations_total) / n,
                 phases = {}, neighbours = s1.neighbours }
@@ -119,16 +120,16 @@ local function one_run(r, nthreads, steps)
 end
 
 -- the table: printed row by row as the rungs finish (a long run shows its progress)
-local head = string.format("%-7s %9s %3s %10s %6s %7s %7s %7s %7s %6s %6s", "dx", "particles", "thr", "ns/pt-step",
-  "dt/dx", "ns/dx", "p-it/st", "p-sol/st", "v-it/st", "rhoerr", "spread")
+local head = string.format("%-7s %9s %3s %10s %6s %7s %7s %7s %5s %7s %6s %6s", "dx", "particles", "thr", "ns/pt-step",
+  "dt/dx", "ns/dx", "p-it/st", "p-sol/st", "sw/st", "v-it/st", "rhoerr", "spread")
 for _, p in ipairs(PHASES) do head = head .. string.format(" %6s", SHORT[p]) end
 head = head .. string.format(" %7s %7s", "x step", "x sweep")
 print(head)
 io.stdout:flush()
 local one = {} -- the 1-thread row of each rung, for the speed-ups
 local function print_row(row)
-  local line = string.format("1/%-5.5g %9d %3d %10.0f %6.4f %7.0f %7.1f %8.2f %7.1f %5.2f%% %5.0f%%", row.k,
-    row.particles, row.threads, row.ns, row.dtdx, row.ns / row.dtdx, row.piter, row.psolves, row.viter,
+  local line = string.format("1/%-5.5g %9d %3d %10.0f %6.4f %7.0f %7.1f %8.2f %5.2f %7.1f %5.2f%% %5.0f%%", row.k,
+    row.particles, row.threads, row.ns, row.dtdx, row.ns / row.dtdx, row.piter, row.psolves, row.switches, row.viter,
     100 * row.maxerr, 100 * row.spread)
   for _, p in ipairs(PHASES) do line = line .. string.format(" %5.1f%%", 100 * row.phases[p] / row.step) end
   local b = one[row.k]
@@ -162,7 +163,7 @@ for _, r in ipairs(rungs) do
     for _, x in ipairs(ns) do lo, hi = math.min(lo, x), math.max(hi, x) end
     local row = { k = r.k, dx = r.dx, particles = r.particles, threads = t, runs = runs, steps = pick.n,
                   ns = med, spread = (hi - lo) / med, piter = pick.piter, viter = pick.viter, dtdx = pick.dtdx,
-                  maxerr = pick.maxerr, psolves = pick.psolves,
+                  maxerr = pick.maxerr, psolves = pick.psolves, switches = pick.switches,
                   phases = pick.phases, step = step, sweeps = sweeps, neighbours = pick.neighbours }
     rows[#rows + 1] = row
     if t == 1 then one[r.k] = row end
@@ -178,18 +179,19 @@ print("step without the two solve phases). ns/pt-step: median over runs of the s
 print(adaptive and "dt: the engine's adaptive step; dt/dx: the plate's mean travel a timed step in dx; ns/dx: ns/pt-step over dt/dx"
   or string.format("dt = %g dx fixed after the warm-up; ns/dx: ns/pt-step over dt/dx (the cost of moving the plate by one dx)", dt_dx))
 if o.from_t then print(string.format("timed from t = %g (untimed steps at the timed dt after the warm-up)", tonumber(o.from_t))) end
-print("p-sol/st: pressure-type solves a step (the pressure, then one per density pass); rhoerr: the largest max density")
+print("p-sol/st: pressure-type solves a step (the pressure, then one per density pass); sw/st: first density passes a step")
+print("that took the difference form's direction (density_gradient = auto); rhoerr: the largest max density")
 print("error after a timed step (over density_tol, 0.5 %, a step takes a second density pass)")
 
 os.execute("mkdir -p '" .. outdir .. "'")
 local csv = assert(io.open(outdir .. "/scaling.csv", "w"))
-local cols = "dx,particles,threads,runs,steps,dt_over_dx,max_density_error,pressure_solves_per_step,ns_per_particle_step,spread,pressure_iterations_per_step," ..
+local cols = "dx,particles,threads,runs,steps,dt_over_dx,max_density_error,pressure_solves_per_step,density_switches_per_step,ns_per_particle_step,spread,pressure_iterations_per_step," ..
   "viscous_iterations_per_step,neighbours_mean,step_s"
 for _, p in ipairs(PHASES) do cols = cols .. "," .. p .. "_s" end
 csv:write(cols, "\n")
 for _, row in ipairs(rows) do
-  local line = string.format("%.10g,%d,%d,%d,%d,%.6g,%.6g,%.4g,%.6g,%.4g,%.6g,%.6g,%.4g,%.6g", row.dx, row.particles,
-    row.threads, row.runs, row.steps, row.dtdx, row.maxerr, row.psolves, row.ns, row.spread, row.piter, row.viter, row.neighbours, row.step)
+  local line = string.format("%.10g,%d,%d,%d,%d,%.6g,%.6g,%.4g,%.4g,%.6g,%.4g,%.6g,%.6g,%.4g,%.6g", row.dx, row.particles,
+    row.threads, row.runs, row.steps, row.dtdx, row.maxerr, row.psolves, row.switches, row.ns, row.spread, row.piter, row.viter, row.neighbours, row.step)
   for _, p in ipairs(PHASES) do line = line .. string.format(",%.6g", row.phases[p]) end
   csv:write(line, "\n")
 end

@@ -304,11 +304,25 @@ static double displace(sph_world *w, const double *dx, const double *dy, const d
     return maxerr;
 }
 
+/* The displacement -grad f / rho of every fluid particle into (dx, dy), ghosts synced: the
+ * renormalised difference form (diff) or the symmetric one (its f / rho^2 in w->sa). */
+static void displacement(sph_world *w, const double *f, int diff, double *dx, double *dy) {
+    int n = w->n;
+    if (!diff) sph_pressure_neg_grad_prepare(w, f, w->sa);
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+    for (int i = 0; i < n; i++) {
+        dx[i] = dy[i] = 0.0;
+        if (w->kind[i] != SPH_FLUID) continue;
+        if (diff) sph_neg_grad_difference(w, f, i, &dx[i], &dy[i]);
+        else sph_neg_grad(w, w->sa, i, &dx[i], &dy[i]);
+    }
+    sph_boundary_sync(w, dx, dy, 1);
+}
+
 /* The density correction's solve: the pressure matrix with the right-hand side and start in
  * w->b and w->sol, to the relative residual tol; the solution into f (ghosts synced) and the
- * displacement -grad f / rho (symmetric form) of every fluid particle into (dx, dy). */
+ * displacement -grad f / rho of every fluid particle into (dx, dy). */
 static int correction_solve(sph_world *w, double tol, double *f, double *dx, double *dy) {
-    int n = w->n;
     sph_solve_result res = sph_solver_pcg(&w->solver, &w->A, w->b, w->sol, tol, w->par.max_iter, w->threads);
     if (!res.converged)
         return sph_world_fail(w,
@@ -319,33 +333,26 @@ static int correction_solve(sph_world *w, double tol, double *f, double *dx, dou
     w->st.solver_iterations_total += res.iterations;
     sph_lap(w, SPH_PHASE_PRESSURE_SOLVE);
     sph_pressure_scatter(w, w->sol, f);
-    /* density_gradient: the symmetric form (default) carries phi_i sum_j m_j grad W_ij,
-     * which does not vanish where the support is cut (the free surface) or the particles
-     * are disordered (the difference form only within a support of the free surface did
-     * not help at 10^6: 11.6 iterations a step, 0.80 %); at 10^6
+    /* density_gradient: the symmetric form (and "auto", see density_pass) carries
+     * phi_i sum_j m_j grad W_ij, which does not vanish where the support is cut (the free
+     * surface) or the particles are disordered (the difference form only within a support
+     * of the free surface did not help at 10^6: 11.6 iterations a step, 0.80 %); at 10^6
      * particles (the paper's squeeze, steps 21-80 at dt = dx/40) phi is large against its
      * source and that term decides the direction: the first pass's step length fell to a
      * mean of 0.31 (1 at 10^4 and 10^5) and the error sat at 0.65-0.79 %. The renormalised
      * difference form keeps it at 1 (max error 0.48 %, 2.00 solves / 5.5 iterations a step
      * against 2.95 / 11.4, 2,126 ns a particle-step against 2,683) but worsens the
      * thin-film validations (Newtonian film 0.153 -> 0.204 at dx = 1/30, under load 0.371
-     * -> 0.652) and the cavity (RMS 0.0233 U): an option, not the default (README). */
-    int diff = w->par.density_gradient == SPH_GRAD_DIFFERENCE;
-    if (!diff) sph_pressure_neg_grad_prepare(w, f, w->sa);
-#pragma omp parallel for schedule(static) num_threads(w->threads)
-    for (int i = 0; i < n; i++) {
-        dx[i] = dy[i] = 0.0;
-        if (w->kind[i] != SPH_FLUID) continue;
-        if (diff) sph_neg_grad_difference(w, f, i, &dx[i], &dy[i]);
-        else sph_neg_grad(w, w->sa, i, &dx[i], &dy[i]);
-    }
-    sph_boundary_sync(w, dx, dy, 1);
+     * -> 0.652) and the cavity (RMS 0.0233 U), mostly through the longer time step its
+     * lower error allows: an option (README). */
+    displacement(w, f, w->par.density_gradient == SPH_GRAD_DIFFERENCE, dx, dy);
     return 0;
 }
 
 /* The step length along the displacement (dx, dy) (density_pass), its continuity change
- * into d. */
-static double step_length(sph_world *w, const double *dx, const double *dy, double *d) {
+ * into d; *gain (if not NULL): how much it lowers the squared error, sum e_i^2 - sum
+ * (e_i + alpha d_i / rho0)^2 (times rho0, over interior fluid). */
+static double step_length(sph_world *w, const double *dx, const double *dy, double *d, double *gain) {
     int n = w->n;
     double rho0 = w->par.rho0, num = 0.0, den = 0.0;
 #pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : num, den)
@@ -356,7 +363,9 @@ static double step_length(sph_world *w, const double *dx, const double *dy, doub
         num -= (w->rho[i] / rho0 - 1.0) * d[i];
         den += d[i] * d[i] / rho0;
     }
-    return den > 0.0 ? fmax(0.0, fmin(1.0, num / den)) : 0.0;
+    double alpha = den > 0.0 ? fmax(0.0, fmin(1.0, num / den)) : 0.0;
+    if (gain) *gain = alpha * (2.0 * num - alpha * den);
+    return alpha;
 }
 
 /* *alpha: the pass's step length (1 when there was nothing to move). A later pass after
@@ -390,7 +399,7 @@ static int density_pass(sph_world *w, int pass, double *alpha_out) {
     if (pass > 0 && w->later_stalled && w->par.density_probe > 0) {
         w->st.density_probes++;
         if (correction_solve(w, w->par.density_probe, f, dx, dy)) return -1;
-        if (step_length(w, dx, dy, d) == 0.0) {
+        if (step_length(w, dx, dy, d, NULL) == 0.0) {
             w->st.density_probes_ended++;
             *alpha_out = 0.0;
             w->st.density_alpha = 0.0;
@@ -411,7 +420,35 @@ static int density_pass(sph_world *w, int pass, double *alpha_out) {
      * step 1150 (h = 0.405), where the projection itself went unstable (see the top of
      * the file). On every stability case but the thin film alpha stays 1: the same
      * figures to the digit. */
-    double alpha = step_length(w, dx, dy, d);
+    double gain, alpha = step_length(w, dx, dy, d, &gain);
+    /* density_gradient = "auto" (the default): a step's first pass whose symmetric
+     * direction has step length under 1 also tries the difference form's direction of the
+     * same phi (one gradient and one divergence sweep, no solve) and moves along the one
+     * that lowers the squared error more. Where the symmetric form works (step length 1)
+     * nothing changes. At 10^6 particles (the paper's squeeze, steps 21-80 at dt = dx/40,
+     * one thread) the symmetric direction's step length falls (above), and the difference
+     * one had step length 1 and 10-40 times the gain wherever it was tried: 2.95 -> 2.07
+     * pressure-type solves a step, 11.4 -> 9.6 iterations, max error 0.79 -> 0.51 %, 2,818 /
+     * 2,672 -> 2,451 / 2,477 ns a particle-step (interleaved). At 10^4 and 10^5 particles,
+     * the headline squeeze and every squeeze validation of make test it never switches (the
+     * same runs bit for bit); the stability suite's long thin film switches at 3,708 of
+     * 9,505 steps, its descent moves 194 -> 18 (steps 3001-4867). Only the first pass: a
+     * later pass whose symmetric direction moves nothing is where the thin films' error
+     * stays above density_tol and holds their time step down, which is what keeps their
+     * force accurate (the difference form everywhere: README, Speed). The second direction
+     * lives in the projection's scratch (ru, rv) and the later passes' (dp). */
+    if (pass == 0 && alpha < 1.0 && w->par.density_gradient == SPH_GRAD_AUTO) {
+        double *hx = w->ru, *hy = w->rv, *hd = w->dp, gain2;
+        displacement(w, f, 1, hx, hy);
+        double alpha2 = step_length(w, hx, hy, hd, &gain2);
+        if (gain2 > gain) {
+            w->st.density_switches++;
+            alpha = alpha2;
+            dx = hx;
+            dy = hy;
+            d = hd;
+        }
+    }
     *alpha_out = alpha;
     w->st.max_density_error = displace(w, dx, dy, d, alpha);
     w->st.density_alpha = fmin(w->st.density_alpha, alpha);

@@ -223,9 +223,14 @@ static int l_world(lua_State *L) {
     p.pressure_gradient = opt_choice(L, "pressure_gradient", "symmetric", "difference",
                                      p.pressure_gradient == SPH_GRAD_DIFFERENCE)
                               ? SPH_GRAD_DIFFERENCE : SPH_GRAD_SYMMETRIC;
-    p.density_gradient = opt_choice(L, "density_gradient", "symmetric", "difference",
-                                    p.density_gradient == SPH_GRAD_DIFFERENCE)
-                             ? SPH_GRAD_DIFFERENCE : SPH_GRAD_SYMMETRIC;
+    if (lua_getfield(L, 1, "density_gradient") != LUA_TNIL) { /* three choices */
+        const char *v = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "";
+        if (!strcmp(v, "auto")) p.density_gradient = SPH_GRAD_AUTO;
+        else if (!strcmp(v, "symmetric")) p.density_gradient = SPH_GRAD_SYMMETRIC;
+        else if (!strcmp(v, "difference")) p.density_gradient = SPH_GRAD_DIFFERENCE;
+        else luaL_error(L, "bad argument to 'world' (density_gradient: \"auto\", \"symmetric\" or \"difference\" expected)");
+    }
+    lua_pop(L, 1);
     p.wall_curved = opt_choice(L, "wall", "linear", "curved", p.wall_curved);
     p.dt_eased = opt_choice(L, "dt_growth", "fixed", "eased", p.dt_eased);
     p.solver = opt_choice(L, "solver", "amg", "jacobi", p.solver == SPH_SOLVER_JACOBI) ? SPH_SOLVER_JACOBI
@@ -520,6 +525,7 @@ static int w_stats(lua_State *L) {
     SETI("density_fallbacks", s.density_fallbacks);
     SETI("density_descents", s.density_descents);
     SETI("density_skipped", s.density_skipped);
+    SETI("density_switches", s.density_switches);
     SETI("density_probes", s.density_probes);
     SETI("density_probes_ended", s.density_probes_ended);
     SETI("wall_contacts", s.wall_contacts);

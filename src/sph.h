@@ -93,12 +93,16 @@ typedef struct sph_params {
                               momentum-conserving) or SPH_GRAD_DIFFERENCE (first-order
                               consistent: renormalised sum V_j (p_j - p_i) grad W)    */
     int density_gradient;  /* the density correction's displacement -grad phi / rho:
-                              SPH_GRAD_SYMMETRIC (default: -sum_j m_j (phi_i / rho_i^2 +
+                              SPH_GRAD_SYMMETRIC (-sum_j m_j (phi_i / rho_i^2 +
                               phi_j / rho_j^2) grad W_ij, whose phi_i sum_j grad W_ij
                               term, where the support is cut or the particles are
-                              disordered, grows with phi itself) or
+                              disordered, grows with phi itself),
                               SPH_GRAD_DIFFERENCE (renormalised, blind to a level of
-                              phi: large runs; thin films less accurate; density.c)   */
+                              phi: large runs; thin films less accurate) or
+                              SPH_GRAD_AUTO (default: the symmetric form; a step's
+                              first pass whose step length is under 1 takes the
+                              difference form's direction where that one removes more
+                              of the error; density.c)                                */
     int density_descent;   /* in [0, 100]: when the passes leave the error above
                               density_limit, up to this many steepest-descent moves of
                               the particles down the density error's gradient
@@ -122,7 +126,7 @@ typedef struct sph_params {
                               small runs); 0 (default): 25 % a step while under it   */
 } sph_params;
 
-enum { SPH_GRAD_SYMMETRIC = 0, SPH_GRAD_DIFFERENCE = 1 };
+enum { SPH_GRAD_SYMMETRIC = 0, SPH_GRAD_DIFFERENCE = 1, SPH_GRAD_AUTO = 2 /* density_gradient only */ };
 #define SPH_MAX_GMRES 8
 
 #define SPH_MAX_DENSITY_PASSES 10
@@ -213,6 +217,8 @@ typedef struct sph_stats {
     long density_skipped;     /* steps so far that took one density pass where the error
                                  asked for more, because a later pass had just moved
                                  nothing (step length 0; density.c)                  */
+    long density_switches;    /* first density passes that took the difference form's
+                                 direction (density_gradient = SPH_GRAD_AUTO) so far */
     long density_probes;      /* later density passes tried first on a loose solve
                                  (density_probe) so far                              */
     long density_probes_ended; /* of those, the ones whose direction could not lower

@@ -37,7 +37,7 @@ void sph_params_default(sph_params *p) {
     p->density_gmres = 0;
     p->wall_curved = 0;
     p->pressure_gradient = SPH_GRAD_SYMMETRIC;
-    p->density_gradient = SPH_GRAD_SYMMETRIC;
+    p->density_gradient = SPH_GRAD_AUTO;
     p->projection_passes = 0;
     p->dt_eased = 0;
 }
@@ -65,7 +65,7 @@ static const char *check_params(const sph_params *p) {
         "pressure_gradient must be SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE", "wall_curved must be 0 or 1",
         "projection_passes must be in [0, 10]", "density_descent must be in [0, 100]", "visc_tol must be in (0, 1)",
         "dt_eased must be 0 or 1", "density_wait must be in [0, 1000]", "density_probe must be in [0, 1)",
-        "density_gradient must be SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE"};
+        "density_gradient must be SPH_GRAD_AUTO, SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE"};
     if (!(p->dx > 0 && isfinite(p->dx))) return bad[0];
     if (!(p->h >= 0 && isfinite(p->h))) return bad[1];
     if (!(p->rho0 > 0 && isfinite(p->rho0))) return bad[2];
@@ -95,7 +95,9 @@ static const char *check_params(const sph_params *p) {
     if (p->dt_eased != 0 && p->dt_eased != 1) return bad[24];
     if (!(p->density_wait >= 0 && p->density_wait <= 1000)) return bad[25];
     if (!(p->density_probe >= 0 && p->density_probe < 1)) return bad[26];
-    if (p->density_gradient != SPH_GRAD_SYMMETRIC && p->density_gradient != SPH_GRAD_DIFFERENCE) return bad[27];
+    if (p->density_gradient != SPH_GRAD_SYMMETRIC && p->density_gradient != SPH_GRAD_DIFFERENCE &&
+        p->density_gradient != SPH_GRAD_AUTO)
+        return bad[27];
     return 0;
 }
 

@@ -43,9 +43,13 @@ T.case("world arguments", function()
   T.checkerror("density_probe", "density_probe = 1", sph.world, { dx = 0.1, density_probe = 1 })
   T.checkerror("density_probe", "density_probe = -0.1", sph.world, { dx = 0.1, density_probe = -0.1 })
   T.check(pcall(sph.world, { dx = 0.1, density_probe = 0 }), "density_probe = 0 (off) is accepted")
-  T.checkerror('density_gradient: "symmetric" or "difference" expected', "density_gradient = 'diff'", sph.world,
+  T.checkerror('density_gradient: "auto", "symmetric" or "difference" expected', "density_gradient = 'diff'", sph.world,
                { dx = 0.1, density_gradient = "diff" })
-  T.check(pcall(sph.world, { dx = 0.1, density_gradient = "difference" }), "density_gradient = 'difference' is accepted")
+  T.checkerror('density_gradient: "auto", "symmetric" or "difference" expected', "density_gradient = 1", sph.world,
+               { dx = 0.1, density_gradient = 1 })
+  for _, g in ipairs{ "auto", "symmetric", "difference" } do
+    T.check(pcall(sph.world, { dx = 0.1, density_gradient = g }), "density_gradient = '" .. g .. "' is accepted")
+  end
   T.checkerror('dt_growth: "fixed" or "eased" expected', "dt_growth = fast", sph.world, { dx = 0.1, dt_growth = "fast" })
   T.checkerror("pressure_predictor", "pressure_predictor = 1.5", sph.world, { dx = 0.1, pressure_predictor = 1.5 })
   T.checkerror("density_relax", "density_relax = 2", sph.world, { dx = 0.1, density_relax = 2 })
