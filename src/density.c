@@ -427,9 +427,10 @@ static int density_pass(sph_world *w, int pass, double *alpha_out) {
      * that lowers the squared error more. Where the symmetric form works (step length 1)
      * nothing changes. At 10^6 particles (the paper's squeeze, steps 21-80 at dt = dx/40,
      * one thread) the symmetric direction's step length falls (above), and the difference
-     * one had step length 1 and 10-40 times the gain wherever it was tried: 2.95 -> 2.07
-     * pressure-type solves a step, 11.4 -> 9.6 iterations, max error 0.79 -> 0.51 %, 2,818 /
-     * 2,672 -> 2,451 / 2,477 ns a particle-step (interleaved). At 10^4 and 10^5 particles,
+     * one won every try logged over steps 1-50 (11 of 11: step length 1; the symmetric one
+     * 0 at 5, a 2-40 times smaller gain at the others): 2.95 -> 2.07 pressure-type
+     * solves a step, 11.4 -> 9.6 iterations, max error 0.79 -> 0.51 %, 2,818 / 2,672 ->
+     * 2,451 / 2,477 ns a particle-step (interleaved; README, Speed, session 18). At 10^4 and 10^5 particles,
      * the headline squeeze and every squeeze validation of make test it never switches (the
      * same runs bit for bit); the stability suite's long thin film switches at 3,708 of
      * 9,505 steps, its descent moves 194 -> 18 (steps 3001-4867). Only the first pass: a

@@ -3,7 +3,8 @@
 -- the thin-film options density_correction = "gmres" and pressure_gradient = "difference"
 -- (pressure.c). Measured (one thread): peak max density error 0.80 % over 627 steps (1.6 s),
 -- plate force / lubrication (F = mu V A^3 / h^6, A = 0.64) 0.86-0.88 at h = 0.175-0.17;
--- with the defaults the same film peaks at 3.57 % (the passes' step length falls to 0), with
+-- with the defaults of then the same film peaked at 3.57 % (the passes' step length falls to
+-- 0; since the density descent, 0.80 %: session 18's defaults 549 steps, F 0.83 x), with
 -- GMRES alone at 0.96 %, with the difference gradient alone at 7.8 %. At dx = 1/80 (16 rows)
 -- the defaults' plate force runs away at h = 0.191 (a pressure mode alternating from step to
 -- step); with both options the film reaches h = 0.17 with the error under 0.8 % (582 steps).
