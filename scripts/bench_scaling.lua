@@ -180,7 +180,7 @@ print(adaptive and "dt: the engine's adaptive step; dt/dx: the plate's mean trav
   or string.format("dt = %g dx fixed after the warm-up; ns/dx: ns/pt-step over dt/dx (the cost of moving the plate by one dx)", dt_dx))
 if o.from_t then print(string.format("timed from t = %g (untimed steps at the timed dt after the warm-up)", tonumber(o.from_t))) end
 print("p-sol/st: pressure-type solves a step (the pressure, then one per density pass); sw/st: first density passes a step")
-print("that took the difference form's direction (density_gradient = auto); rhoerr: the largest max density")
+print("that moved along the difference form's direction (density_gradient = auto); rhoerr: the largest max density")
 print("error after a timed step (over density_tol, 0.5 %, a step takes a second density pass)")
 
 os.execute("mkdir -p '" .. outdir .. "'")

@@ -321,8 +321,9 @@ static void displacement(sph_world *w, const double *f, int diff, double *dx, do
 
 /* The density correction's solve: the pressure matrix with the right-hand side and start in
  * w->b and w->sol, to the relative residual tol; the solution into f (ghosts synced) and the
- * displacement -grad f / rho of every fluid particle into (dx, dy). */
-static int correction_solve(sph_world *w, double tol, double *f, double *dx, double *dy) {
+ * displacement -grad f / rho of every fluid particle into (dx, dy), in the difference form
+ * (diff) or the symmetric one. */
+static int correction_solve(sph_world *w, double tol, double *f, int diff, double *dx, double *dy) {
     sph_solve_result res = sph_solver_pcg(&w->solver, &w->A, w->b, w->sol, tol, w->par.max_iter, w->threads);
     if (!res.converged)
         return sph_world_fail(w,
@@ -345,7 +346,7 @@ static int correction_solve(sph_world *w, double tol, double *f, double *dx, dou
      * thin-film validations (Newtonian film 0.153 -> 0.204 at dx = 1/30, under load 0.371
      * -> 0.652) and the cavity (RMS 0.0233 U), mostly through the longer time step its
      * lower error allows: an option (README). */
-    displacement(w, f, w->par.density_gradient == SPH_GRAD_DIFFERENCE, dx, dy);
+    displacement(w, f, diff, dx, dy);
     return 0;
 }
 
@@ -372,6 +373,7 @@ static double step_length(sph_world *w, const double *dx, const double *dy, doub
  * one of step length 0 (density_probe) tries the direction of a loose solve first. */
 static int density_pass(sph_world *w, int pass, double *alpha_out) {
     double gamma = w->par.density_relax, rho0 = w->par.rho0;
+    int only_diff = w->par.density_gradient == SPH_GRAD_DIFFERENCE;
     int nrows = w->nrows;
     *alpha_out = 1.0;
     if (gamma <= 0 || nrows == 0) return 0;
@@ -398,7 +400,7 @@ static int density_pass(sph_world *w, int pass, double *alpha_out) {
      * at 10^6). 10^6, steps 21-80: 13.3 -> 11.4 pressure-type iterations a step. */
     if (pass > 0 && w->later_stalled && w->par.density_probe > 0) {
         w->st.density_probes++;
-        if (correction_solve(w, w->par.density_probe, f, dx, dy)) return -1;
+        if (correction_solve(w, w->par.density_probe, f, only_diff, dx, dy)) return -1;
         if (step_length(w, dx, dy, d, NULL) == 0.0) {
             w->st.density_probes_ended++;
             *alpha_out = 0.0;
@@ -407,7 +409,10 @@ static int density_pass(sph_world *w, int pass, double *alpha_out) {
         }
         for (int r = 0; r < nrows; r++) w->sol[r] = 0.0; /* the full solve, as without the probe */
     }
-    if (correction_solve(w, w->par.density_solve_tol, f, dx, dy)) return -1;
+    /* density_gradient = "auto": the first pass starts from the form that won the last one */
+    int auto_first = pass == 0 && w->par.density_gradient == SPH_GRAD_AUTO, diff = only_diff;
+    if (auto_first) diff = w->first_difference;
+    if (correction_solve(w, w->par.density_solve_tol, f, diff, dx, dy)) return -1;
     /* The step length: the density change is linear in the displacement, d_i =
      * sph_field_div(dx, dy), so alpha = -sum e_i d_i / sum d_i^2 (clamped to [0, 1]; e
      * the density error, over interior fluid) is the one that leaves the least squared
@@ -421,35 +426,38 @@ static int density_pass(sph_world *w, int pass, double *alpha_out) {
      * the file). On every stability case but the thin film alpha stays 1: the same
      * figures to the digit. */
     double gain, alpha = step_length(w, dx, dy, d, &gain);
-    /* density_gradient = "auto" (the default): a step's first pass whose symmetric
-     * direction has step length under 1 also tries the difference form's direction of the
-     * same phi (one gradient and one divergence sweep, no solve) and moves along the one
-     * that lowers the squared error more. Where the symmetric form works (step length 1)
-     * nothing changes. At 10^6 particles (the paper's squeeze, steps 21-80 at dt = dx/40,
-     * one thread) the symmetric direction's step length falls (above), and the difference
-     * one won every try logged over steps 1-50 (11 of 11: step length 1; the symmetric one
-     * 0 at 5, a 2-40 times smaller gain at the others): 2.95 -> 2.07 pressure-type
-     * solves a step, 11.4 -> 9.6 iterations, max error 0.79 -> 0.51 %, 2,818 / 2,672 ->
-     * 2,451 / 2,477 ns a particle-step (interleaved; README, Speed, session 18). At 10^4 and 10^5 particles,
-     * the headline squeeze and every squeeze validation of make test it never switches (the
-     * same runs bit for bit); the stability suite's long thin film switches at 3,708 of
-     * 9,505 steps, its descent moves 194 -> 18 (steps 3001-4867). Only the first pass: a
-     * later pass whose symmetric direction moves nothing is where the thin films' error
-     * stays above density_tol and holds their time step down, which is what keeps their
-     * force accurate (the difference form everywhere: README, Speed). The second direction
-     * lives in the projection's scratch (ru, rv) and the later passes' (dp). */
-    if (pass == 0 && alpha < 1.0 && w->par.density_gradient == SPH_GRAD_AUTO) {
+    /* density_gradient = "auto" (the default): a step's first pass moves along the
+     * symmetric gradient's direction, as before, until one falls short (step length under
+     * 1); that pass also tries the difference form's direction of the same phi (one
+     * gradient and one divergence sweep, no solve) and moves along the one that lowers the
+     * squared error more. The winner is the next first pass's starting form, and the other
+     * is tried only when it falls short in turn. Where the symmetric form works nothing
+     * changes: at 10^4 and 10^5 particles, the headline squeeze and every squeeze
+     * validation of make test it never falls short (the same runs bit for bit). At 10^6
+     * particles (the paper's squeeze, steps 21-80 at dt = dx/40, one thread) it does from
+     * the start (above), the difference direction wins and keeps winning: every first pass
+     * then moves along it, as with density_gradient = "difference" (README, Speed, session
+     * 18: 2.95 -> 2.00 pressure-type solves a step, 11.4 -> 5.8 iterations, max error 0.79
+     * -> 0.50 %). Switching only when the symmetric direction fell short, and back at once
+     * (session 18's first version): 2.07 solves, 9.6 iterations, the first pass's warm start
+     * missing (3-5 iterations against 1-2), as the two forms alternated. Only the first
+     * pass: a later pass whose symmetric direction moves nothing is where the thin films'
+     * error stays above density_tol and holds their time step down, which is what keeps
+     * their force accurate (the difference form everywhere: README, Speed). The second
+     * direction lives in the projection's scratch (ru, rv) and the later passes' (dp). */
+    if (auto_first && alpha < 1.0) {
         double *hx = w->ru, *hy = w->rv, *hd = w->dp, gain2;
-        displacement(w, f, 1, hx, hy);
+        displacement(w, f, !diff, hx, hy);
         double alpha2 = step_length(w, hx, hy, hd, &gain2);
         if (gain2 > gain) {
-            w->st.density_switches++;
+            w->first_difference = !diff;
             alpha = alpha2;
             dx = hx;
             dy = hy;
             d = hd;
         }
     }
+    if (auto_first && w->first_difference) w->st.density_switches++;
     *alpha_out = alpha;
     w->st.max_density_error = displace(w, dx, dy, d, alpha);
     w->st.density_alpha = fmin(w->st.density_alpha, alpha);
@@ -522,7 +530,9 @@ static int density_gmres(sph_world *w) {
         }
         sph_lap(w, SPH_PHASE_CORRECTION);
         if (w->pin >= 0) sph_pressure_make_compatible(w, w->m[w->pin] * vk[w->pin]);
-        if (correction_solve(w, w->par.density_solve_tol, w->dp, dx, dy)) return -1;
+        if (correction_solve(w, w->par.density_solve_tol, w->dp, w->par.density_gradient == SPH_GRAD_DIFFERENCE, dx,
+                             dy))
+            return -1;
         if (m == 0) {
 #pragma omp parallel for schedule(static) num_threads(th)
             for (int i = 0; i < nt; i++) w->phi[i] = beta * w->dp[i];

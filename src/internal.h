@@ -263,6 +263,8 @@ struct sph_world {
     long passes_after;         /* density.c: one density pass a step before this step */
     int passes_wait;           /* the last such wait (0: the last later pass moved)  */
     int later_stalled;         /* density.c: the last later pass had step length 0   */
+    int first_difference;      /* density.c: the last first pass moved along the
+                                  difference form (density_gradient = "auto")       */
     int *row_of;               /* row -> particle                                   */
 
     double t, dt, wall_time;

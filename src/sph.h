@@ -99,10 +99,11 @@ typedef struct sph_params {
                               disordered, grows with phi itself),
                               SPH_GRAD_DIFFERENCE (renormalised, blind to a level of
                               phi: large runs; thin films less accurate) or
-                              SPH_GRAD_AUTO (default: the symmetric form; a step's
-                              first pass whose step length is under 1 takes the
-                              difference form's direction where that one removes more
-                              of the error; density.c)                                */
+                              SPH_GRAD_AUTO (default: the symmetric form, until a
+                              step's first pass falls short, step length under 1; that
+                              pass takes the other form's direction where it removes
+                              more of the error, and the winner is where the next
+                              first pass starts; later passes symmetric; density.c)  */
     int density_descent;   /* in [0, 100]: when the passes leave the error above
                               density_limit, up to this many steepest-descent moves of
                               the particles down the density error's gradient
@@ -217,8 +218,8 @@ typedef struct sph_stats {
     long density_skipped;     /* steps so far that took one density pass where the error
                                  asked for more, because a later pass had just moved
                                  nothing (step length 0; density.c)                  */
-    long density_switches;    /* first density passes that took the difference form's
-                                 direction (density_gradient = SPH_GRAD_AUTO) so far */
+    long density_switches;    /* first density passes so far that moved along the
+                                 difference form's direction (SPH_GRAD_AUTO)         */
     long density_probes;      /* later density passes tried first on a loose solve
                                  (density_probe) so far                              */
     long density_probes_ended; /* of those, the ones whose direction could not lower

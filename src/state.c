@@ -12,8 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define STATE_MAGIC "SPHSTAT4" /* 2: the density fallback's wait, 3: the later passes' wait, 4: the
-                                  * last later pass stalled (density.c) */
+#define STATE_MAGIC "SPHSTAT5" /* 2: the density fallback's wait, 3: the later passes' wait, 4: the
+                                  * last later pass stalled, 5: the last first pass's form (density.c) */
 
 typedef struct {
     char magic[8];
@@ -49,7 +49,8 @@ int sph_world_save(sph_world *w, const char *file) {
     double dbl[4] = {w->t, w->dt, w->dt_prev, w->wall_time};
     ok = ok && fwrite(ints, sizeof ints, 1, f) == 1 && fwrite(dbl, sizeof dbl, 1, f) == 1;
     ok = ok && fwrite(&w->steps, sizeof w->steps, 1, f) == 1;
-    long wait[5] = {w->fallback_after, w->fallback_wait, w->passes_after, w->passes_wait, w->later_stalled};
+    long wait[6] = {w->fallback_after, w->fallback_wait, w->passes_after, w->passes_wait, w->later_stalled,
+                    w->first_difference};
     ok = ok && fwrite(wait, sizeof wait, 1, f) == 1;
     ok = ok && fwrite(&w->st, sizeof w->st, 1, f) == 1;
     ok = ok && fwrite(w->phase_time, sizeof w->phase_time, 1, f) == 1;
@@ -100,15 +101,16 @@ sph_world *sph_world_load(const char *file, char *err, size_t errlen) {
     ok = ok && fread(w->plates, sizeof w->plates[0], SPH_MAX_PLATES, f) == SPH_MAX_PLATES;
     ok = ok && fread(ints, sizeof ints, 1, f) == 1 && fread(dbl, sizeof dbl, 1, f) == 1;
     ok = ok && fread(&w->steps, sizeof w->steps, 1, f) == 1;
-    long wait[5];
+    long wait[6];
     ok = ok && fread(wait, sizeof wait, 1, f) == 1 && wait[1] >= 0 && wait[1] <= 1L << 20 && wait[3] >= 0 &&
-         wait[3] <= 1L << 20 && (wait[4] == 0 || wait[4] == 1);
+         wait[3] <= 1L << 20 && (wait[4] == 0 || wait[4] == 1) && (wait[5] == 0 || wait[5] == 1);
     if (ok) {
         w->fallback_after = wait[0];
         w->fallback_wait = (int)wait[1];
         w->passes_after = wait[2];
         w->passes_wait = (int)wait[3];
         w->later_stalled = (int)wait[4];
+        w->first_difference = (int)wait[5];
     }
     ok = ok && fread(&w->st, sizeof w->st, 1, f) == 1;
     ok = ok && fread(w->phase_time, sizeof w->phase_time, 1, f) == 1;

@@ -71,4 +71,26 @@ T.case("save, load and continue: the density fallback's wait", function()
   T.check(a == b, "the loaded world takes the fallbacks the uninterrupted one takes", a .. " against " .. b)
 end)
 
+-- density_gradient = "auto": the form the last first density pass moved along is where the
+-- next one starts (density.c), and it is part of the state. The film started thin
+-- (tests/lua/test_thin_film.lua) moves its first passes along the difference form from
+-- early on; saved at step 100 and continued 20 steps, the loaded world must move as many
+-- first passes along it as the uninterrupted one.
+T.case("save, load and continue: the density passes' starting form", function()
+  local file = os.tmpname()
+  local w = squeeze.build{ dx = 1 / 40, Re = 1, Bn = 0, mode = "velocity", width = 1.6, height = 0.2, h_min = 0.17,
+                           world = { threads = o.threads or 1 } }
+  for _ = 1, 100 do w:step() end
+  local s0 = w:stats().density_switches
+  w:save(file)
+  for _ = 1, 20 do w:step() end
+  local w2 = sph.load(file)
+  for _ = 1, 20 do w2:step() end
+  local a, b = w:stats().density_switches - s0, w2:stats().density_switches - s0
+  print(string.format("# first passes along the difference form in the 20 steps after the save: %d (uninterrupted), %d (loaded)", a, b))
+  T.check(a > 0, "the film's first passes move along the difference form after step 100", a)
+  T.check(a == b, "the loaded world starts its first passes from the saved form", b)
+  os.remove(file)
+end)
+
 T.done()

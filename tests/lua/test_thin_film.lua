@@ -96,16 +96,18 @@ T.case("film started thin, density_probe: stalled later passes end on a loose so
   T.below(sa.solver_iterations_total, sb.solver_iterations_total, "the probe saves pressure-type iterations")
 end)
 
--- density_gradient = "auto" (the default): a step's first density pass whose symmetric
--- direction has step length under 1 moves along the difference form's direction of the same
--- potential where that one lowers the squared error more (density.c). On this film the
--- symmetric first pass falls short at some steps. Measured (300 steps, one thread):
--- "auto" switched at 58 first passes; the max density error after a step averaged 0.560 %
--- against 0.601 % with "symmetric", 200 steps above density_tol (0.5 %) against 243,
--- 5 descent moves against 12 (the difference form everywhere: 0.610 %, 263 steps); on two
--- threads (other round-off) 53 switches, 0.568 % against 0.601 %, 201 steps against 243.
+-- density_gradient = "auto" (the default): a step's first density pass moves along the
+-- symmetric direction until one falls short (step length under 1); that pass moves along the
+-- difference form's direction of the same potential where that one lowers the squared error
+-- more, and the winner is where the next first pass starts (density.c). Measured (300
+-- steps, one thread): 282 of the 300 first passes moved along the difference direction;
+-- the max density error after a step averaged 0.557 % against 0.601 % with "symmetric",
+-- 219 steps above density_tol (0.5 %) against 243, 7 descent moves against 12 (the
+-- difference form everywhere: 0.610 %, 263 steps); on two threads (other round-off) the
+-- same counts, 0.557 %. (Session 18's first version, back to the symmetric form after each
+-- switch: 58 switches, 0.560 % / 0.568 % on one / two threads, 200 / 201 steps.)
 -- The checks: the switch acts here, never with "symmetric", and leaves a lower error on
--- average (the gap, 5-7 %, against a round-off spread of 1.4 % in "auto"'s mean).
+-- average (the gap, 7 %, against a round-off spread of 1.4 % in the first version's mean).
 T.case("film started thin, density_gradient = auto: the first pass takes the better direction", function()
   local function run(g)
     local w = squeeze.build{ dx = 1 / 40, Re = 1, Bn = 0, mode = "velocity", width = 1.6, height = 0.2, h_min = 0.17,
@@ -121,9 +123,9 @@ T.case("film started thin, density_gradient = auto: the first pass takes the bet
   end
   local sa, ea, aa = run(nil)
   local ss, es, as = run("symmetric")
-  print(string.format("# film started thin, 300 steps: auto switched %d first passes; mean max density error %.5f (auto) against %.5f (symmetric), steps above density_tol %d against %d",
+  print(string.format("# film started thin, 300 steps: auto moved %d first passes along the difference direction; mean max density error %.5f (auto) against %.5f (symmetric), steps above density_tol %d against %d",
     sa.density_switches, ea, es, aa, as))
-  T.check(sa.density_switches > 0, "the default switches first passes on this film", sa.density_switches)
+  T.check(sa.density_switches > 0, "the default moves first passes along the difference direction on this film", sa.density_switches)
   T.check(ss.density_switches == 0, "density_gradient = symmetric never switches", ss.density_switches)
   T.below(ea, es, "the switch lowers the film's mean max density error")
   T.below(aa, as, "and the steps left above density_tol")
