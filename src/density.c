@@ -334,9 +334,10 @@ static int correction_solve(sph_world *w, double tol, double *f, int diff, doubl
     w->st.solver_iterations_total += res.iterations;
     sph_lap(w, SPH_PHASE_PRESSURE_SOLVE);
     sph_pressure_scatter(w, w->sol, f);
-    /* density_gradient: the symmetric form (and "auto", see density_pass) carries
-     * phi_i sum_j m_j grad W_ij, which does not vanish where the support is cut (the free
-     * surface) or the particles are disordered (the difference form only within a support
+    /* density_gradient: the symmetric form ("auto"'s until its first passes go over to
+     * the difference form, and its later passes and GMRES directions always; density_pass)
+     * carries phi_i sum_j m_j grad W_ij, which does not vanish where the support is cut
+     * (the free surface) or the particles are disordered (the difference form only within a support
      * of the free surface did not help at 10^6: 11.6 iterations a step, 0.80 %); at 10^6
      * particles (the paper's squeeze, steps 21-80 at dt = dx/40) phi is large against its
      * source and that term decides the direction: the first pass's step length fell to a

@@ -103,7 +103,8 @@ typedef struct sph_params {
                               step's first pass falls short, step length under 1; that
                               pass takes the other form's direction where it removes
                               more of the error, and the winner is where the next
-                              first pass starts; later passes symmetric; density.c)  */
+                              first pass starts; later passes and the GMRES
+                              correction symmetric; density.c)                       */
     int density_descent;   /* in [0, 100]: when the passes leave the error above
                               density_limit, up to this many steepest-descent moves of
                               the particles down the density error's gradient
