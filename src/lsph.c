@@ -151,18 +151,34 @@ static lworld *push_world(lua_State *L) {
     return lw;
 }
 
-/* world{key = first | second}: 0 for first, 1 for second, def when absent; anything else
- * is an error naming both. */
-static int opt_choice(lua_State *L, const char *key, const char *first, const char *second, int def) {
+/* world{key = names[0] | names[1] | ...} (names ends with 0): the index of the name given,
+ * def when absent; anything else is an error naming them all. */
+static int opt_pick(lua_State *L, const char *key, const char *const names[], int def) {
     int t = lua_getfield(L, 1, key), r = def;
     if (t != LUA_TNIL) {
-        const char *v = lua_tostring(L, -1);
-        if (t != LUA_TSTRING || (strcmp(v, first) && strcmp(v, second)))
-            luaL_error(L, "bad argument to 'world' (%s: \"%s\" or \"%s\" expected)", key, first, second);
-        r = !strcmp(v, second);
+        const char *v = t == LUA_TSTRING ? lua_tostring(L, -1) : "";
+        for (r = 0; names[r] && strcmp(v, names[r]); r++) {}
+        if (!names[r]) {
+            luaL_Buffer b;
+            luaL_buffinit(L, &b);
+            for (int k = 0; names[k]; k++) {
+                if (k > 0) luaL_addstring(&b, names[k + 1] ? ", " : " or ");
+                luaL_addchar(&b, '"');
+                luaL_addstring(&b, names[k]);
+                luaL_addchar(&b, '"');
+            }
+            luaL_pushresult(&b);
+            luaL_error(L, "bad argument to 'world' (%s: %s expected)", key, lua_tostring(L, -1));
+        }
     }
     lua_pop(L, 1);
     return r;
+}
+
+/* world{key = first | second}: 0 for first, 1 for second, def when absent (opt_pick). */
+static int opt_choice(lua_State *L, const char *key, const char *first, const char *second, int def) {
+    const char *const names[] = {first, second, 0};
+    return opt_pick(L, key, names, def);
 }
 
 static int l_world(lua_State *L) {
@@ -223,14 +239,8 @@ static int l_world(lua_State *L) {
     p.pressure_gradient = opt_choice(L, "pressure_gradient", "symmetric", "difference",
                                      p.pressure_gradient == SPH_GRAD_DIFFERENCE)
                               ? SPH_GRAD_DIFFERENCE : SPH_GRAD_SYMMETRIC;
-    if (lua_getfield(L, 1, "density_gradient") != LUA_TNIL) { /* three choices */
-        const char *v = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "";
-        if (!strcmp(v, "auto")) p.density_gradient = SPH_GRAD_AUTO;
-        else if (!strcmp(v, "symmetric")) p.density_gradient = SPH_GRAD_SYMMETRIC;
-        else if (!strcmp(v, "difference")) p.density_gradient = SPH_GRAD_DIFFERENCE;
-        else luaL_error(L, "bad argument to 'world' (density_gradient: \"auto\", \"symmetric\" or \"difference\" expected)");
-    }
-    lua_pop(L, 1);
+    static const char *const gradients[] = {"symmetric", "difference", "auto", 0}; /* SPH_GRAD_* order */
+    p.density_gradient = opt_pick(L, "density_gradient", gradients, p.density_gradient);
     p.wall_curved = opt_choice(L, "wall", "linear", "curved", p.wall_curved);
     p.dt_eased = opt_choice(L, "dt_growth", "fixed", "eased", p.dt_eased);
     p.solver = opt_choice(L, "solver", "amg", "jacobi", p.solver == SPH_SOLVER_JACOBI) ? SPH_SOLVER_JACOBI

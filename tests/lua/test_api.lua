@@ -43,9 +43,9 @@ T.case("world arguments", function()
   T.checkerror("density_probe", "density_probe = 1", sph.world, { dx = 0.1, density_probe = 1 })
   T.checkerror("density_probe", "density_probe = -0.1", sph.world, { dx = 0.1, density_probe = -0.1 })
   T.check(pcall(sph.world, { dx = 0.1, density_probe = 0 }), "density_probe = 0 (off) is accepted")
-  T.checkerror('density_gradient: "auto", "symmetric" or "difference" expected', "density_gradient = 'diff'", sph.world,
+  T.checkerror('density_gradient: "symmetric", "difference" or "auto" expected', "density_gradient = 'diff'", sph.world,
                { dx = 0.1, density_gradient = "diff" })
-  T.checkerror('density_gradient: "auto", "symmetric" or "difference" expected', "density_gradient = 1", sph.world,
+  T.checkerror('density_gradient: "symmetric", "difference" or "auto" expected', "density_gradient = 1", sph.world,
                { dx = 0.1, density_gradient = 1 })
   for _, g in ipairs{ "auto", "symmetric", "difference" } do
     T.check(pcall(sph.world, { dx = 0.1, density_gradient = g }), "density_gradient = '" .. g .. "' is accepted")
