@@ -374,7 +374,6 @@ static double step_length(sph_world *w, const double *dx, const double *dy, doub
  * one of step length 0 (density_probe) tries the direction of a loose solve first. */
 static int density_pass(sph_world *w, int pass, double *alpha_out) {
     double gamma = w->par.density_relax, rho0 = w->par.rho0;
-    int only_diff = w->par.density_gradient == SPH_GRAD_DIFFERENCE;
     int nrows = w->nrows;
     *alpha_out = 1.0;
     if (gamma <= 0 || nrows == 0) return 0;
@@ -391,6 +390,10 @@ static int density_pass(sph_world *w, int pass, double *alpha_out) {
     if (bmax == 0.0) return 0;
     if (w->pin >= 0) sph_pressure_make_compatible(w, -w->m[w->pin] * gamma * (rho0 - w->rho[w->pin]) / rho0);
     double *f = pass ? w->dp : w->phi, *dx = w->xs, *dy = w->ys, *d = w->sb;
+    /* the form of the displacement: density_gradient's; with "auto", a first pass starts
+     * from the form that won the last one (below) */
+    int auto_first = pass == 0 && w->par.density_gradient == SPH_GRAD_AUTO;
+    int diff = w->par.density_gradient == SPH_GRAD_DIFFERENCE || (auto_first && w->first_difference);
     /* density_probe: a later pass after one of step length 0 is likely to get 0 again (the
      * error left lives in modes the passes cannot reach); a loose solve (relative residual
      * density_probe, from zero) gives its direction's step length first. 0: the pass ends
@@ -401,7 +404,7 @@ static int density_pass(sph_world *w, int pass, double *alpha_out) {
      * at 10^6). 10^6, steps 21-80: 13.3 -> 11.4 pressure-type iterations a step. */
     if (pass > 0 && w->later_stalled && w->par.density_probe > 0) {
         w->st.density_probes++;
-        if (correction_solve(w, w->par.density_probe, f, only_diff, dx, dy)) return -1;
+        if (correction_solve(w, w->par.density_probe, f, diff, dx, dy)) return -1;
         if (step_length(w, dx, dy, d, NULL) == 0.0) {
             w->st.density_probes_ended++;
             *alpha_out = 0.0;
@@ -410,9 +413,6 @@ static int density_pass(sph_world *w, int pass, double *alpha_out) {
         }
         for (int r = 0; r < nrows; r++) w->sol[r] = 0.0; /* the full solve, as without the probe */
     }
-    /* density_gradient = "auto": the first pass starts from the form that won the last one */
-    int auto_first = pass == 0 && w->par.density_gradient == SPH_GRAD_AUTO, diff = only_diff;
-    if (auto_first) diff = w->first_difference;
     if (correction_solve(w, w->par.density_solve_tol, f, diff, dx, dy)) return -1;
     /* The step length: the density change is linear in the displacement, d_i =
      * sph_field_div(dx, dy), so alpha = -sum e_i d_i / sum d_i^2 (clamped to [0, 1]; e

@@ -693,8 +693,6 @@ void sph_pressure_neg_grad_prepare(sph_world *w, const double *f, double *fr) {
     for (int j = 0; j < nt; j++) fr[j] = f[j] / (w->rho[j] * w->rho[j]);
 }
 
-
-
 /* -grad p~ / rho of every fluid particle for the viscous step's pressure predictor, p~ the
  * last step's pressure at the current positions, kernel-averaged (Shepard) over fluid and
  * wall particles and held at 0 on the free surface, its gradient the renormalised
