@@ -63,6 +63,10 @@ $(B)/bench_render: tests/bench/bench_render.c $(B)/libsph.a | $(B)
 stability: all
 	$(B)/sph scripts/stability.lua
 
+# the reference cases of ../shared/REFERENCES.md at three resolutions: docs/validation.md
+validate: all
+	$(B)/sph scripts/validate.lua
+
 PREFIX ?= /usr/local
 install: all
 	install -d $(PREFIX)/bin $(PREFIX)/lib $(PREFIX)/include $(PREFIX)/share/lua/5.4/sph
@@ -76,5 +80,5 @@ install: all
 clean:
 	rm -rf build build-san
 
-.PHONY: all test check bench stability install clean
+.PHONY: all test check bench stability validate install clean
 -include $(wildcard $(B)/*.d)
