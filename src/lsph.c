@@ -399,8 +399,20 @@ static int l_load(lua_State *L) {
     return 1;
 }
 
-/* Evaluate the Lua plate laws at time t and hand their values to the engine. */
-static void apply_laws(lua_State *L, int widx, sph_world *w, double t) {
+/* The world at idx again after a call into Lua: the callback (a plate law, run's each)
+ * may have closed it, and its engine world is then freed; going on would use freed memory.
+ * during: what was running, for the message. */
+static sph_world *world_after_call(lua_State *L, int idx, const char *during) {
+    lworld *lw = luaL_checkudata(L, idx, WORLD);
+    if (!lw->w)
+        luaL_error(L, "world closed during %s: a callback must not close the world it is called from", during);
+    return lw->w;
+}
+
+/* Evaluate the Lua plate laws at time t and hand their values to the engine. Returns the
+ * world, fetched again after every law (a law may close it: a Lua error then). */
+static sph_world *apply_laws(lua_State *L, int widx, double t, const char *during) {
+    sph_world *w = world_after_call(L, widx, during);
     int np = sph_world_nplates(w);
     lua_getiuservalue(L, widx, 1);
     int uv = lua_gettop(L);
@@ -414,6 +426,7 @@ static void apply_laws(lua_State *L, int widx, sph_world *w, double t) {
         lua_pushnumber(L, t);
         lua_getfield(L, uv, key);
         lua_call(L, 2, 1);
+        w = world_after_call(L, widx, during);
         int isnum;
         double v = lua_tonumberx(L, -1, &isnum);
         sph_plate_mode mode = sph_plate_mode_of(w, k);
@@ -426,13 +439,14 @@ static void apply_laws(lua_State *L, int widx, sph_world *w, double t) {
         lua_pop(L, 1);
     }
     lua_pop(L, 1);
+    return w;
 }
 
 static int w_step(lua_State *L) {
     lworld *lw = check_world(L, 1);
     double dt = luaL_optnumber(L, 2, 0);
-    apply_laws(L, 1, lw->w, sph_world_time(lw->w));
-    if (sph_world_step(lw->w, dt) < 0) return engine_error(L, lw->w);
+    sph_world *w = apply_laws(L, 1, sph_world_time(lw->w), "w:step (in a plate law)");
+    if (sph_world_step(w, dt) < 0) return engine_error(L, w);
     lua_pushvalue(L, 1);
     return 1;
 }
@@ -472,7 +486,7 @@ static int w_run(lua_State *L) {
     double next_out = every > 0 ? t0 + every : INFINITY;
     while (sph_world_time(w) < until_t - eps) {
         double now = sph_world_time(w);
-        apply_laws(L, 1, w, now);
+        w = apply_laws(L, 1, now, "w:run (in a plate law)");
         double dt = fixed_dt > 0 ? fixed_dt : sph_world_next_dt(w);
         /* Land on the next output time by spreading the remaining interval evenly over the
          * steps it needs, rather than cutting the last step short: the pressure source
@@ -494,6 +508,7 @@ static int w_run(lua_State *L) {
                 lua_pushvalue(L, each);
                 lua_pushvalue(L, 1);
                 lua_call(L, 1, 1);
+                w = world_after_call(L, 1, "w:run (in its each function)");
                 int stop = lua_isboolean(L, -1) && !lua_toboolean(L, -1);
                 lua_pop(L, 1);
                 if (stop) break;

@@ -183,6 +183,30 @@ T.case("laws", function()
   T.checkerror("each", "run with a non-function each", w.run, w, { until_t = 1, each = 3 })
 end)
 
+T.case("a callback that closes its world", function()
+  -- a plate law or run's each may close the world it is called from: the step or run then
+  -- raises (its engine world is gone), it does not go on with freed memory
+  local function world()
+    local w = sph.world{ dx = 0.1, threads = 1 }
+    w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
+    w:plate{ rect = { -1, -0.3, 2, 0 } }
+    return w, w:plate{ rect = { -1, 1, 2, 1.3 }, axis = "y" }
+  end
+  local w, top = world()
+  top:velocity(function() w:close(); return -1 end)
+  T.checkerror("world closed during w:step", "a velocity law closing the world stops step", w.step, w)
+  T.checkerror("closed sph.world", "the world stays closed after that", function() w:step() end)
+  w, top = world()
+  top:load(function() w:close(); return 1 end)
+  T.checkerror("world closed during w:run", "a load law closing the world stops run", w.run, w, { until_t = 1 })
+  w = world()
+  T.checkerror("world closed during w:run (in its each function)", "each closing the world stops run", w.run, w,
+               { until_t = 1, every = 1e-9, each = function(ww) ww:close() end })
+  w = world()
+  T.checkerror("world closed during w:run (in its each function)", "each closing the world and returning false",
+               w.run, w, { until_t = 1, every = 1e-9, each = function(ww) ww:close(); return false end })
+end)
+
 -- a 10 x 10 Bingham box between two plates, the upper one at V = -1, after three steps
 local function squeezed_box()
   local w = sph.world{ dx = 0.1, threads = 1 }
