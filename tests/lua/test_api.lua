@@ -207,6 +207,45 @@ T.case("a callback that closes its world", function()
                w.run, w, { until_t = 1, every = 1e-9, each = function(ww) ww:close(); return false end })
 end)
 
+T.case("fill: bounds and all or nothing", function()
+  local water = sph.newtonian{ mu = 1 }
+  local w = sph.world{ dx = 0.1, threads = 1 }
+  T.check(w:fill{ rect = { 0, 0, 1, 1 }, material = water } == 100, "a first fill of 100 particles")
+  local function consistent(what)
+    local n = w:stats().fluid
+    T.check(n == 100 and #w:field("x") == 100 and #w:field("u") == 100,
+            "after " .. what .. " the world still holds its 100 particles", n)
+  end
+  T.checkerror("asks for 1e+14 particles", "a rect of 1e14 lattice points is refused up front", w.fill, w,
+               { rect = { 0, 0, 1e6, 1e6 }, material = water })
+  consistent("a refused huge fill")
+  local fine = sph.world{ dx = 1e-5 }
+  T.checkerror("at dx = 1e-05 asks for 1e+22 particles", "rect {0, 0, 1e6, 1e6} at dx = 1e-5 names the count",
+               fine.fill, fine, { rect = { 0, 0, 1e6, 1e6 }, material = water })
+  T.check(fine:stats().fluid == 0, "that world stays empty")
+  T.checkerror("must be finite", "an infinite rect", w.fill, w, { rect = { 0, 0, math.huge, 1 }, material = water })
+  T.checkerror("must be finite", "a rect from -inf", w.fill, w, { rect = { -math.huge, 0, 1, 1 }, material = water })
+  T.checkerror("x0 < x1", "a NaN in the rect", w.fill, w, { rect = { 0, 0, 0 / 0, 1 }, material = water })
+  T.checkerror("asks for inf particles", "a rect whose width overflows", w.fill, w,
+               { rect = { -1e308, 0, 1e308, 1 }, material = water })
+  T.checkerror("holds no lattice point at dx = 0.1", "a rect narrower than dx", w.fill, w,
+               { rect = { 2, 0, 2.04, 1 }, material = water })
+  T.checkerror("must be finite", "a plate with an infinite rect", w.plate, w, { rect = { 0, -1, math.huge, 0 } })
+  T.checkerror("asks for", "a plate of too many particles", w.plate, w, { rect = { -1e9, -1e9, 1e9, -1 } })
+  consistent("refused rects")
+  w:plate{ rect = { -1, -0.3, 2, 0 } }
+  T.checkerror("overlaps plate 1: 10 of its lattice points", "a fill into a plate names the overlap", w.fill, w,
+               { rect = { 1.5, -0.2, 2.5, 0.8 }, material = water })
+  consistent("a fill into a plate")
+  local half = sph.world{ dx = 0.1, symmetry = { x = 0 } }
+  T.checkerror("no lattice point inside the simulated domain", "a fill wholly behind the symmetry plane",
+               half.fill, half, { rect = { -1, 0, -0.5, 1 }, material = water })
+  T.checkerror("dx = 1e-300 is out of range", "dx = 1e-300", sph.world, { dx = 1e-300 })
+  T.checkerror("dx = 1e+300 is out of range", "dx = 1e300", sph.world, { dx = 1e300 })
+  T.checkerror("h = 1e-31 is out of range", "h = 1e-31", sph.world, { dx = 1e-5, h = 1e-31 })
+  T.checkerror("particle mass", "a particle mass that underflows", sph.world, { dx = 1e-20, rho = 1e-300 })
+end)
+
 -- a 10 x 10 Bingham box between two plates, the upper one at V = -1, after three steps
 local function squeezed_box()
   local w = sph.world{ dx = 0.1, threads = 1 }
