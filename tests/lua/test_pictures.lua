@@ -164,6 +164,29 @@ T.case("render a field with a fixed range", function()
     "a constant field with a colour bar renders")
 end)
 
+T.case("ranges of any finite width end", function()
+  -- the tick search of a colour bar or an axis ends for any finite range: a span of one
+  -- subnormal (its tick step underflowed to 0 and the search spun forever), the widest
+  -- doubles, equal ends
+  local w = sph.world{ dx = 0.1 }
+  w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
+  local f = tmp("ranges.png")
+  local line = { x = { 0, 1 }, y = { 0, 1 } }
+  local ranges = { { 0, 5e-324 }, { 5e-324, 1e-323 }, { 1, 1 }, { -1.7976931348623157e308, 1.7976931348623157e308 },
+                   { 1e17, 1e17 + 16 } }
+  for _, r in ipairs(ranges) do
+    local what = string.format("{%g, %g}", r[1], r[2])
+    T.check(w:render{ file = f, width = 120, height = 80, color = "p", range = r } == true,
+            "render with range " .. what .. " ends")
+    if r[1] < r[2] then
+      T.check(sph.plot{ file = f, width = 160, height = 120, xrange = r, yrange = r, series = { line } } == true,
+              "plot with xrange and yrange " .. what .. " ends")
+    end
+  end
+  T.check(sph.plot{ file = f, width = 160, height = 120, series = { { x = { 0, 5e-324 }, y = { 0, 5e-324 } } } } == true,
+          "plot of data a subnormal apart (automatic range) ends")
+end)
+
 T.case("render mirror and label", function()
   local w = sph.world{ dx = 0.1, symmetry = { x = 0 } }
   w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
