@@ -199,7 +199,14 @@ static int l_world(lua_State *L) {
     p.cvisc = sph_lua_opt_number(L, 1, "world", "cvisc", p.cvisc);
     p.cforce = sph_lua_opt_number(L, 1, "world", "cforce", p.cforce);
     p.dt_max = sph_lua_opt_number(L, 1, "world", "dt_max", 0);
-    p.threads = (int)sph_lua_opt_number(L, 1, "world", "threads", 0);
+    /* checked as a double: converting one beyond int (threads = 1e20) is undefined */
+    double threads = sph_lua_opt_number(L, 1, "world", "threads", 0);
+    if (!(threads >= 0 && threads <= SPH_MAX_THREADS && threads == floor(threads))) {
+        char got[32];
+        snprintf(got, sizeof got, "%g", threads); /* lua_pushfstring has no %g */
+        luaL_error(L, "bad argument to 'world' (threads must be 1..%d (0: all cores), got %s)", SPH_MAX_THREADS, got);
+    }
+    p.threads = (int)threads;
     p.tol = sph_lua_opt_number(L, 1, "world", "tol", p.tol);
     p.visc_tol = sph_lua_opt_number(L, 1, "world", "visc_tol", p.visc_tol);
     p.max_iter = (int)sph_lua_opt_number(L, 1, "world", "max_iter", p.max_iter);
@@ -220,7 +227,6 @@ static int l_world(lua_State *L) {
     p.pressure_predictor = sph_lua_opt_number(L, 1, "world", "pressure_predictor", p.pressure_predictor);
     if (!(p.shifting >= 0)) luaL_error(L, "bad argument to 'world' (shifting: number >= 0 expected)");
     if (!(p.dx > 0)) luaL_error(L, "bad argument to 'world' (dx: positive number expected, got %f)", p.dx);
-    if (p.threads < 0) luaL_error(L, "bad argument to 'world' (threads: number >= 1 expected)");
     int t = lua_getfield(L, 1, "gravity");
     if (t == LUA_TTABLE) {
         for (int k = 0; k < 2; k++) {

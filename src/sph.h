@@ -54,7 +54,7 @@ typedef struct sph_params {
     double period_lo[2], period_hi[2];
     int symmetry[2];       /* mirror plane x = sym_at[0] / y = sym_at[1]           */
     double sym_at[2];
-    int threads;           /* 0: all cores                                         */
+    int threads;           /* 0: all cores; at most SPH_MAX_THREADS                */
     double tol;            /* pressure solver: relative residual; default 1e-6     */
     double visc_tol;       /* implicit viscous solve: relative residual; default
                               1e-6 (README, Speed: what looser costs)                */
@@ -134,6 +134,11 @@ enum { SPH_GRAD_SYMMETRIC = 0, SPH_GRAD_DIFFERENCE = 1, SPH_GRAD_AUTO = 2 /* den
 #define SPH_MAX_DENSITY_PASSES 10
 
 void sph_params_default(sph_params *p);
+
+/* OpenMP threads a world may ask for. A fixed bound, not a multiple of this machine's
+ * cores, so a state saved on a large machine still loads on a small one; far beyond it
+ * (threads = 100000) the OpenMP runtime overflowed its stack and crashed. */
+#define SPH_MAX_THREADS 256
 
 /* dx and h must lie in [SPH_MIN_LENGTH, SPH_MAX_LENGTH] (powers of them up to the fourth
  * stay normal doubles), and the particle mass rho dx^2 must be a normal number. */

@@ -184,6 +184,11 @@ sph_world *sph_world_load(const char *file, char *err, size_t errlen) {
         fclose(r.f);
         return 0;
     }
+    if (par.threads < 0 || par.threads > SPH_MAX_THREADS) { /* named with its value, unlike check_params */
+        damaged(&r, "parameters: threads = %d: must be 1..%d (0: all cores)", par.threads, SPH_MAX_THREADS);
+        fclose(r.f);
+        return 0;
+    }
     char why[256];
     sph_world *w = sph_world_new(&par, why, sizeof why); /* checks every parameter */
     if (!w) {

@@ -66,7 +66,9 @@ static const char *check_params(const sph_params *p) {
         "pressure_gradient must be SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE", "wall_curved must be 0 or 1",
         "projection_passes must be in [0, 10]", "density_descent must be in [0, 100]", "visc_tol must be in (0, 1)",
         "dt_eased must be 0 or 1", "density_wait must be in [0, 1000]", "density_probe must be in [0, 1)",
-        "density_gradient must be SPH_GRAD_AUTO, SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE"};
+        "density_gradient must be SPH_GRAD_AUTO, SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE",
+        "threads must be 1..256 (0: all cores)"};
+    _Static_assert(SPH_MAX_THREADS == 256, "the threads message names the bound");
     if (!(p->dx > 0 && isfinite(p->dx))) return bad[0];
     if (!(p->h >= 0 && isfinite(p->h))) return bad[1];
     if (!(p->rho0 > 0 && isfinite(p->rho0))) return bad[2];
@@ -99,6 +101,7 @@ static const char *check_params(const sph_params *p) {
     if (p->density_gradient != SPH_GRAD_SYMMETRIC && p->density_gradient != SPH_GRAD_DIFFERENCE &&
         p->density_gradient != SPH_GRAD_AUTO)
         return bad[27];
+    if (!(p->threads >= 0 && p->threads <= SPH_MAX_THREADS)) return bad[28];
     return 0;
 }
 
@@ -137,6 +140,7 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
     w->eps2 = 0.01 * w->h * w->h;
     w->mass0 = p->rho0 * p->dx * p->dx;
     w->threads = p->threads > 0 ? p->threads : omp_get_num_procs();
+    if (w->threads > SPH_MAX_THREADS) w->threads = SPH_MAX_THREADS; /* a machine of more cores */
     if (w->par.dt_min <= 0) w->par.dt_min = 1e-12 * w->h;
     return w;
 }

@@ -53,6 +53,14 @@ T.case("world arguments", function()
   T.checkerror('dt_growth: "fixed" or "eased" expected', "dt_growth = fast", sph.world, { dx = 0.1, dt_growth = "fast" })
   T.checkerror("pressure_predictor", "pressure_predictor = 1.5", sph.world, { dx = 0.1, pressure_predictor = 1.5 })
   T.checkerror("density_relax", "density_relax = 2", sph.world, { dx = 0.1, density_relax = 2 })
+  -- threads are capped (SPH_MAX_THREADS): 100000 overflowed the OpenMP runtime's stack
+  T.checkerror("threads must be 1..256 (0: all cores), got 100000", "threads = 100000", sph.world,
+               { dx = 0.1, threads = 100000 })
+  T.checkerror("threads must be 1..256 (0: all cores), got 257", "threads = 257", sph.world, { dx = 0.1, threads = 257 })
+  T.checkerror("got -1", "threads = -1", sph.world, { dx = 0.1, threads = -1 })
+  T.checkerror("got 2.5", "threads = 2.5", sph.world, { dx = 0.1, threads = 2.5 })
+  T.checkerror("got 1e+20", "threads = 1e20 (beyond int)", sph.world, { dx = 0.1, threads = 1e20 })
+  T.check(pcall(sph.world, { dx = 0.1, threads = 256 }), "threads = 256 is accepted")
   T.checkerror("table expected", "world needs a table", sph.world, 3)
 end)
 
