@@ -7,7 +7,9 @@
  * with the uninterrupted one to the solvers' tolerances, not to the last bit (the pressure
  * multigrid hierarchy is reused for up to 20 steps in a run and rebuilt after a load). */
 #include "internal.h"
+#include "atomic.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -37,8 +39,11 @@ static void header(state_header *h) {
 #define STATE_INTS(w) {w->kind, w->mat, w->id}
 
 int sph_world_save(sph_world *w, const char *file) {
-    FILE *f = fopen(file, "wb");
-    if (!f) return sph_world_fail(w, "cannot open '%s' for writing", file);
+    sph_atomic_file af; /* a failed save leaves an earlier state at that path as it was */
+    char why[512];
+    if (sph_atomic_open(&af, file, why, sizeof why)) return sph_world_fail(w, "%s", why);
+    FILE *f = af.fp;
+    errno = 0;
     state_header h;
     header(&h);
     int ok = fwrite(&h, sizeof h, 1, f) == 1;
@@ -65,8 +70,12 @@ int sph_world_save(sph_world *w, const char *file) {
         for (size_t k = 0; k < sizeof iv / sizeof *iv; k++) ok = ok && fwrite(iv[k], sizeof(int), n, f) == n;
         ok = ok && fwrite(w->surf, 1, n, f) == n;
     }
-    if (fclose(f) != 0) ok = 0;
-    if (!ok) return sph_world_fail(w, "writing '%s' failed", file);
+    if (!ok) {
+        int e = errno;
+        sph_atomic_abort(&af);
+        return sph_world_fail(w, "cannot write '%s': %s", file, strerror(e ? e : EIO));
+    }
+    if (sph_atomic_commit(&af, why, sizeof why)) return sph_world_fail(w, "%s", why);
     return 0;
 }
 

@@ -339,6 +339,56 @@ T.case("files and closing", function()
   T.checkerror("closed sph.world", "closing twice raises, as for a closed file", function() w:close() end)
 end)
 
+-- Every writer replaces its file whole (src/atomic.c): a write that fails leaves the file
+-- that was there byte for byte, and no temporary file. The failure is real: a child sph
+-- under a file size limit of 1 KB (ulimit -f 2, SIGXFSZ ignored) whose writes stop with
+-- "File too large"; before, the writers truncated the old file first.
+T.case("a failed write leaves the old file", function()
+  local base = os.tmpname()
+  local names = { csv = base .. ".csv", vtk = base .. ".vtk", save = base .. ".state" }
+  local old = "old bytes\n"
+  for _, f in pairs(names) do
+    local g = assert(io.open(f, "wb")); g:write(old); g:close()
+  end
+  local script = base .. ".lua"
+  local g = assert(io.open(script, "w"))
+  g:write([[
+local sph = require "sph"
+local o = ...
+local w = sph.world{ dx = 0.1, threads = 1 }
+w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
+print("csv", w:write_csv(o.base .. ".csv"))
+print("vtk", w:write_vtk(o.base .. ".vtk"))
+print("save", pcall(w.save, w, o.base .. ".state"))
+]])
+  g:close()
+  local p = io.popen("sh -c \"trap '' XFSZ; ulimit -f 2; exec '" .. arg[-1] .. "' '" .. script .. "' base='" .. base ..
+                     "'\" 2>&1")
+  local out = p:read("a")
+  p:close()
+  for what, f in pairs(names) do
+    local line = out:match(what .. "\t([^\n]*)") or "(no line)"
+    T.check(line:find("File too large", 1, true) and line:find(f, 1, true),
+            what .. " under a 1 KB file limit fails, naming the file and why", line)
+    local h = io.open(f, "rb")
+    local now = h and h:read("a")
+    if h then h:close() end
+    T.check(now == old, what .. ": the old file keeps its bytes after the failed write", now and #now .. " bytes")
+    os.remove(f)
+  end
+  local left = io.popen("ls '" .. base .. "'.*.tmp.* 2>/dev/null | wc -l"):read("a")
+  T.check(tonumber(left) == 0, "no temporary file left behind", left)
+  os.remove(script)
+  os.remove(base)
+  local w = sph.world{ dx = 0.1 }
+  w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
+  T.checkerror("cannot open '/nonexistent-sph-dir/s.state' for writing: No such file or directory",
+               "w:save into a missing directory names the file and why", w.save, w, "/nonexistent-sph-dir/s.state")
+  local ok, msg = w:write_csv("/nonexistent-sph-dir/p.csv")
+  T.check(ok == nil and msg == "cannot open '/nonexistent-sph-dir/p.csv' for writing: No such file or directory",
+          "write_csv into a missing directory names the file and why", msg)
+end)
+
 T.case("solver = amg and jacobi agree", function()
   -- the paper's Bingham squeeze (Re = 1, Bn = 5, M = 800) at dx = 1/20, 20 steps with each
   -- preconditioner (tol 1e-6). Measured: plate force 7.3e-7 apart (relative), pressure

@@ -277,6 +277,46 @@ T.case("failed writes", function()
   T.check(r == nil and type(m) == "string" and m:find(bad, 1, true), "animate to a bad path: nil and message", tostring(m))
 end)
 
+-- A picture replaces its file whole (src/atomic.c): a write that fails (here for real: a
+-- child sph under a 1 KB file size limit, SIGXFSZ ignored) leaves the old file byte for
+-- byte and no temporary file; before, the writers truncated it first.
+T.case("a failed picture write leaves the old file", function()
+  local names = { render = tmp("old_render.png"), plot = tmp("old_plot.png"), animate = tmp("old_anim.png") }
+  local frame = tmp("old_frame.png")
+  local w = sph.world{ dx = 0.1 }
+  w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
+  w:render{ file = frame, width = 300, height = 200 }
+  local old = "old bytes\n"
+  for _, f in pairs(names) do
+    local g = assert(io.open(f, "wb")); g:write(old); g:close()
+  end
+  local script = tmp("old.lua")
+  local g = assert(io.open(script, "w"))
+  g:write(string.format([[
+local sph = require "sph"
+local w = sph.world{ dx = 0.1, threads = 1 }
+w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
+print("render", w:render{ file = %q, width = 300, height = 200 })
+print("plot", sph.plot{ file = %q, series = { { x = { 0, 1 }, y = { 0, 1 } } } })
+print("animate", sph.animate{ frames = { %q, %q }, file = %q })
+]], names.render, names.plot, frame, frame, names.animate))
+  g:close()
+  local p = io.popen("sh -c \"trap '' XFSZ; ulimit -f 2; exec '" .. arg[-1] .. "' '" .. script .. "'\" 2>&1")
+  local out = p:read("a")
+  p:close()
+  for what, f in pairs(names) do
+    local line = out:match(what .. "\t([^\n]*)") or "(no line)"
+    T.check(line:find("nil", 1, true) and line:find(f, 1, true), what .. " under a 1 KB file limit fails, naming the file",
+            line)
+    local h = io.open(f, "rb")
+    local now = h and h:read("a")
+    if h then h:close() end
+    T.check(now == old, what .. ": the old file keeps its bytes after the failed write", now and #now .. " bytes")
+  end
+  local left = io.popen("ls '" .. base .. "'_old*.tmp.* 2>/dev/null | wc -l"):read("a")
+  T.check(tonumber(left) == 0, "no temporary file left behind", left)
+end)
+
 T.case("argument errors", function()
   local w = sph.world{ dx = 0.1 }
   w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
