@@ -478,6 +478,11 @@ static int w_run(lua_State *L) {
     double every = sph_lua_opt_number(L, 2, "run", "every", 0);
     double fixed_dt = sph_lua_opt_number(L, 2, "run", "dt", 0);
     if (!(every >= 0)) luaL_error(L, "bad argument to 'run' (every: number >= 0 expected)");
+    if (!isfinite(fixed_dt)) { /* else an infinite dt is cut to the output interval below */
+        char got[32];
+        snprintf(got, sizeof got, "%g", fixed_dt);
+        luaL_error(L, "bad argument to 'run' (dt must be a finite positive number (or 0: adaptive), got %s)", got);
+    }
     int t = lua_getfield(L, 2, "each");
     if (t != LUA_TNIL && t != LUA_TFUNCTION)
         luaL_error(L, "bad argument to 'run' (each: function expected, got %s)", luaL_typename(L, -1));

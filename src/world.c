@@ -505,11 +505,29 @@ void sph_lap(sph_world *w, int phase) {
 }
 
 
+/* A dt the caller gives may be at most this many times the viscous time rho h^2 / max eta
+ * of the fluid: beyond it no flow is resolved (w:step(1e300) used to pass, t = 2e300). */
+#define SPH_DT_SPAN 1e6
+
 int sph_world_step(sph_world *w, double dt) {
     double t0 = omp_get_wtime();
     w->lap = t0;
     prepare(w);
     if (w->nfluid == 0) return sph_world_fail(w, "the world has no fluid: call fill first");
+    if (!isfinite(dt))
+        return sph_world_fail(w, "dt must be a finite positive number (or <= 0: adaptive), got %g at step %ld (t = %g)",
+                              dt, w->steps, w->t);
+    if (dt > 0) {
+        double etamax = 0.0;
+        for (int i = 0; i < w->n; i++)
+            if (w->kind[i] == SPH_FLUID && w->eta[i] > etamax) etamax = w->eta[i];
+        double bound = SPH_DT_SPAN * w->par.rho0 * w->h * w->h / etamax;
+        if (etamax > 0 && dt > bound)
+            return sph_world_fail(w,
+                                  "dt = %g exceeds the bound %g (%g times the viscous time rho h^2 / max eta) "
+                                  "at step %ld (t = %g)",
+                                  dt, bound, SPH_DT_SPAN, w->steps, w->t);
+    }
     if (!(dt > 0)) dt = sph_timestep_compute(w);
     if (!isfinite(dt) || dt < w->par.dt_min) {
         char why[512];

@@ -191,6 +191,22 @@ T.case("laws", function()
   T.checkerror("each", "run with a non-function each", w.run, w, { until_t = 1, each = 3 })
 end)
 
+T.case("step: the dt given must be finite and within bounds", function()
+  local w = sph.world{ dx = 0.1, threads = 1 }
+  w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
+  -- the viscous time rho h^2 / max eta is 0.01 here: the bound is 10^6 times that
+  T.checkerror("dt = 1e+300 exceeds the bound 10000", "w:step(1e300) is refused, naming dt and the bound", w.step, w, 1e300)
+  T.checkerror("dt must be a finite positive number (or <= 0: adaptive), got inf", "w:step(math.huge)", w.step, w,
+               math.huge)
+  T.checkerror("dt must be a finite positive number", "w:step(NaN)", w.step, w, 0 / 0)
+  T.checkerror("dt must be a finite positive number", "w:step(-math.huge)", w.step, w, -math.huge)
+  T.checkerror("dt must be a finite positive number", "w:run with dt = math.huge", w.run, w,
+               { until_t = 1, dt = math.huge })
+  T.check(w.t == 0 and w.steps == 0, "the refused steps left the clock alone", w.t)
+  w:step(1e-3)
+  T.check(w.t == 1e-3 and w.steps == 1, "a dt within the bound steps", w.t)
+end)
+
 T.case("a callback that closes its world", function()
   -- a plate law or run's each may close the world it is called from: the step or run then
   -- raises (its engine world is gone), it does not go on with freed memory
