@@ -13,7 +13,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
+#include "atomic.h"
 #include "message.h"
 #include "sph_pictures.h"
 
@@ -216,6 +218,7 @@ int sph_animate_png(const char *const *frames, size_t nframes, double fps, int l
                     const char *file, char *err, size_t errlen) {
     png_file first, cur;
     writer w;
+    sph_atomic_file out;
     unsigned num, den;
     unsigned char actl[8];
     size_t i, pos;
@@ -228,11 +231,17 @@ int sph_animate_png(const char *const *frames, size_t nframes, double fps, int l
         return sph_message_set(err, errlen, "no output file name");
     if (loops < 0)
         return sph_message_set(err, errlen, "loops must be >= 0 (0: forever), got %d", loops);
+    /* The output may not be a frame: the same file under any name ("./b.png", a link),
+     * told by device and inode; the name too, for an output not there yet. */
+    struct stat out_st;
+    int out_exists = stat(file, &out_st) == 0;
     for (i = 0; i < nframes; i++) {
+        struct stat fr_st;
         if (!frames[i])
             return sph_message_set(err, errlen, "frame %zu has no file name", i + 1);
-        if (!strcmp(frames[i], file)) /* it would be truncated before it is read */
-            return sph_message_set(err, errlen, "output '%s' is also frame %zu", file, i + 1);
+        if (!strcmp(frames[i], file) || (out_exists && stat(frames[i], &fr_st) == 0 &&
+                                         fr_st.st_dev == out_st.st_dev && fr_st.st_ino == out_st.st_ino))
+            return sph_message_set(err, errlen, "output '%s' is also frame %zu ('%s')", file, i + 1, frames[i]);
     }
     if (sph_animate_delay(fps, &num, &den, err, errlen))
         return -1;
@@ -244,11 +253,11 @@ int sph_animate_png(const char *const *frames, size_t nframes, double fps, int l
         free(first.buf);
         return -1;
     }
-    w.fp = fopen(file, "wb");
-    if (!w.fp) {
+    if (sph_atomic_open(&out, file, err, errlen)) {
         free(first.buf);
-        return sph_message_set(err, errlen, "cannot open '%s' for writing: %s", file, strerror(errno));
+        return -1;
     }
+    w.fp = out.fp;
     if (fwrite(png_signature, 1, 8, w.fp) != 8)
         w.werr = 1;
     put_chunk(&w, "IHDR", NULL, 0, first.ihdr, 13);
@@ -293,9 +302,10 @@ int sph_animate_png(const char *const *frames, size_t nframes, double fps, int l
         put_chunk(&w, "IEND", NULL, 0, NULL, 0);
     if (rc == 0 && w.werr)
         rc = sph_message_set(err, errlen, "cannot write '%s': %s", file, strerror(errno));
-    if (fclose(w.fp) != 0 && rc == 0)
-        rc = sph_message_set(err, errlen, "cannot write '%s': %s", file, strerror(errno));
-    if (rc != 0)
-        remove(file); /* no half animation left behind */
-    return rc;
+    /* a failure leaves no half animation, and an earlier file at that path as it was */
+    if (rc != 0) {
+        sph_atomic_abort(&out);
+        return rc;
+    }
+    return sph_atomic_commit(&out, err, errlen);
 }

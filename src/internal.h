@@ -285,6 +285,10 @@ int sph_world_fail(sph_world *w, const char *fmt, ...)
 #endif
     ;
 int sph_world_reserve(sph_world *w, int need);
+/* The dx lattice of rect for a fill or a plate (what names it in messages): nx x ny points.
+ * -1 with a message on a rect that is not finite, inverted, holds no lattice point, or
+ * would take the world past SPH_MAX_PARTICLES. */
+int sph_world_lattice(sph_world *w, const double rect[4], const char *what, int *nx, int *ny);
 
 /* neighbours.c */
 int sph_neighbours_sort(sph_world *w);

@@ -1,7 +1,7 @@
 /* Particle output: CSV (one row per particle) and legacy VTK polydata (ParaView). */
 #include "internal.h"
+#include "atomic.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -10,9 +10,17 @@ static double yielded(const sph_world *w, int i) {
     return w->kind[i] == SPH_FLUID && w->eta[i] * w->gd[i] > w->mats[w->mat[i]].tau0;
 }
 
-static int closef(sph_world *w, FILE *f, const char *file) {
-    int bad = ferror(f);
-    if (fclose(f) != 0 || bad) return sph_world_fail(w, "cannot write %s: %s", file, strerror(errno));
+/* Both writers go through a temporary file renamed into place (atomic.h): a failed write
+ * leaves an earlier file at that path as it was. */
+static int openf(sph_world *w, sph_atomic_file *af, const char *file) {
+    char why[512];
+    if (sph_atomic_open(af, file, why, sizeof why)) return sph_world_fail(w, "%s", why);
+    return 0;
+}
+
+static int closef(sph_world *w, sph_atomic_file *af) {
+    char why[512];
+    if (sph_atomic_commit(af, why, sizeof why)) return sph_world_fail(w, "%s", why);
     return 0;
 }
 
@@ -20,8 +28,9 @@ int sph_io_write_csv(sph_world *w, const char *file);
 int sph_io_write_vtk(sph_world *w, const char *file);
 
 int sph_io_write_csv(sph_world *w, const char *file) {
-    FILE *f = fopen(file, "w");
-    if (!f) return sph_world_fail(w, "cannot open %s: %s", file, strerror(errno));
+    sph_atomic_file af;
+    if (openf(w, &af, file)) return -1;
+    FILE *f = af.fp;
     fprintf(f, "id,kind,x,y,u,v,p,rho,eta,gammadot,stress,yielded,surface\n");
     for (int i = 0; i < w->n; i++) {
         int fl = w->kind[i] == SPH_FLUID;
@@ -30,12 +39,13 @@ int sph_io_write_csv(sph_world *w, const char *file) {
                 fl ? w->eta[i] : 0.0, fl ? w->gd[i] : 0.0, fl ? w->eta[i] * w->gd[i] : 0.0,
                 (int)yielded(w, i), fl ? (int)w->surf[i] : 0);
     }
-    return closef(w, f, file);
+    return closef(w, &af);
 }
 
 int sph_io_write_vtk(sph_world *w, const char *file) {
-    FILE *f = fopen(file, "w");
-    if (!f) return sph_world_fail(w, "cannot open %s: %s", file, strerror(errno));
+    sph_atomic_file af;
+    if (openf(w, &af, file)) return -1;
+    FILE *f = af.fp;
     int n = w->n;
     fprintf(f, "# vtk DataFile Version 3.0\nsph particles t=%.10g\nASCII\nDATASET POLYDATA\n", w->t);
     fprintf(f, "POINTS %d double\n", n);
@@ -63,7 +73,7 @@ int sph_io_write_vtk(sph_world *w, const char *file) {
             fprintf(f, "%.10g\n", v);
         }
     }
-    return closef(w, f, file);
+    return closef(w, &af);
 }
 
 int sph_world_write_csv(sph_world *w, const char *file) { return sph_io_write_csv(w, file); }

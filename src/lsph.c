@@ -199,7 +199,14 @@ static int l_world(lua_State *L) {
     p.cvisc = sph_lua_opt_number(L, 1, "world", "cvisc", p.cvisc);
     p.cforce = sph_lua_opt_number(L, 1, "world", "cforce", p.cforce);
     p.dt_max = sph_lua_opt_number(L, 1, "world", "dt_max", 0);
-    p.threads = (int)sph_lua_opt_number(L, 1, "world", "threads", 0);
+    /* checked as a double: converting one beyond int (threads = 1e20) is undefined */
+    double threads = sph_lua_opt_number(L, 1, "world", "threads", 0);
+    if (!(threads >= 0 && threads <= SPH_MAX_THREADS && threads == floor(threads))) {
+        char got[32];
+        snprintf(got, sizeof got, "%g", threads); /* lua_pushfstring has no %g */
+        luaL_error(L, "bad argument to 'world' (threads must be 1..%d (0: all cores), got %s)", SPH_MAX_THREADS, got);
+    }
+    p.threads = (int)threads;
     p.tol = sph_lua_opt_number(L, 1, "world", "tol", p.tol);
     p.visc_tol = sph_lua_opt_number(L, 1, "world", "visc_tol", p.visc_tol);
     p.max_iter = (int)sph_lua_opt_number(L, 1, "world", "max_iter", p.max_iter);
@@ -220,7 +227,6 @@ static int l_world(lua_State *L) {
     p.pressure_predictor = sph_lua_opt_number(L, 1, "world", "pressure_predictor", p.pressure_predictor);
     if (!(p.shifting >= 0)) luaL_error(L, "bad argument to 'world' (shifting: number >= 0 expected)");
     if (!(p.dx > 0)) luaL_error(L, "bad argument to 'world' (dx: positive number expected, got %f)", p.dx);
-    if (p.threads < 0) luaL_error(L, "bad argument to 'world' (threads: number >= 1 expected)");
     int t = lua_getfield(L, 1, "gravity");
     if (t == LUA_TTABLE) {
         for (int k = 0; k < 2; k++) {
@@ -399,8 +405,20 @@ static int l_load(lua_State *L) {
     return 1;
 }
 
-/* Evaluate the Lua plate laws at time t and hand their values to the engine. */
-static void apply_laws(lua_State *L, int widx, sph_world *w, double t) {
+/* The world at idx again after a call into Lua: the callback (a plate law, run's each)
+ * may have closed it, and its engine world is then freed; going on would use freed memory.
+ * during: what was running, for the message. */
+static sph_world *world_after_call(lua_State *L, int idx, const char *during) {
+    lworld *lw = luaL_checkudata(L, idx, WORLD);
+    if (!lw->w)
+        luaL_error(L, "world closed during %s: a callback must not close the world it is called from", during);
+    return lw->w;
+}
+
+/* Evaluate the Lua plate laws at time t and hand their values to the engine. Returns the
+ * world, fetched again after every law (a law may close it: a Lua error then). */
+static sph_world *apply_laws(lua_State *L, int widx, double t, const char *during) {
+    sph_world *w = world_after_call(L, widx, during);
     int np = sph_world_nplates(w);
     lua_getiuservalue(L, widx, 1);
     int uv = lua_gettop(L);
@@ -414,6 +432,7 @@ static void apply_laws(lua_State *L, int widx, sph_world *w, double t) {
         lua_pushnumber(L, t);
         lua_getfield(L, uv, key);
         lua_call(L, 2, 1);
+        w = world_after_call(L, widx, during);
         int isnum;
         double v = lua_tonumberx(L, -1, &isnum);
         sph_plate_mode mode = sph_plate_mode_of(w, k);
@@ -426,13 +445,14 @@ static void apply_laws(lua_State *L, int widx, sph_world *w, double t) {
         lua_pop(L, 1);
     }
     lua_pop(L, 1);
+    return w;
 }
 
 static int w_step(lua_State *L) {
     lworld *lw = check_world(L, 1);
     double dt = luaL_optnumber(L, 2, 0);
-    apply_laws(L, 1, lw->w, sph_world_time(lw->w));
-    if (sph_world_step(lw->w, dt) < 0) return engine_error(L, lw->w);
+    sph_world *w = apply_laws(L, 1, sph_world_time(lw->w), "w:step (in a plate law)");
+    if (sph_world_step(w, dt) < 0) return engine_error(L, w);
     lua_pushvalue(L, 1);
     return 1;
 }
@@ -458,6 +478,11 @@ static int w_run(lua_State *L) {
     double every = sph_lua_opt_number(L, 2, "run", "every", 0);
     double fixed_dt = sph_lua_opt_number(L, 2, "run", "dt", 0);
     if (!(every >= 0)) luaL_error(L, "bad argument to 'run' (every: number >= 0 expected)");
+    if (!isfinite(fixed_dt)) { /* else an infinite dt is cut to the output interval below */
+        char got[32];
+        snprintf(got, sizeof got, "%g", fixed_dt);
+        luaL_error(L, "bad argument to 'run' (dt must be a finite positive number (or 0: adaptive), got %s)", got);
+    }
     int t = lua_getfield(L, 2, "each");
     if (t != LUA_TNIL && t != LUA_TFUNCTION)
         luaL_error(L, "bad argument to 'run' (each: function expected, got %s)", luaL_typename(L, -1));
@@ -472,7 +497,7 @@ static int w_run(lua_State *L) {
     double next_out = every > 0 ? t0 + every : INFINITY;
     while (sph_world_time(w) < until_t - eps) {
         double now = sph_world_time(w);
-        apply_laws(L, 1, w, now);
+        w = apply_laws(L, 1, now, "w:run (in a plate law)");
         double dt = fixed_dt > 0 ? fixed_dt : sph_world_next_dt(w);
         /* Land on the next output time by spreading the remaining interval evenly over the
          * steps it needs, rather than cutting the last step short: the pressure source
@@ -494,6 +519,7 @@ static int w_run(lua_State *L) {
                 lua_pushvalue(L, each);
                 lua_pushvalue(L, 1);
                 lua_call(L, 1, 1);
+                w = world_after_call(L, 1, "w:run (in its each function)");
                 int stop = lua_isboolean(L, -1) && !lua_toboolean(L, -1);
                 lua_pop(L, 1);
                 if (stop) break;

@@ -18,6 +18,9 @@ int sph_plate_fill(sph_world *w, const double rect[4], int axis) {
     double dx = w->dx;
     int k = w->nplates;
     if (k >= SPH_MAX_PLATES) return sph_world_fail(w, "too many plates (at most %d)", SPH_MAX_PLATES);
+    int nx, ny;
+    if (sph_world_lattice(w, rect, "plate", &nx, &ny)) return -1;
+    if (sph_world_reserve(w, w->n + nx * ny)) return -1; /* all at once: no half-made plate */
     double wd = rect[2] - rect[0], ht = rect[3] - rect[1];
     double thick = wd < ht ? wd : ht, need = SPH_KERNEL_SUPPORT * w->h;
     if (thick < need * (1.0 - 1e-9))
@@ -43,7 +46,7 @@ int sph_plate_fill(sph_world *w, const double rect[4], int axis) {
     pl->doubled = 0;
     for (int a = 0; a < 2; a++)
         if (P->symmetry[a] && rect[a] < P->sym_at[a] && rect[a + 2] > P->sym_at[a]) pl->doubled = 1;
-    int nx = (int)floor(wd / dx + 0.5), ny = (int)floor(ht / dx + 0.5), count = 0;
+    int count = 0;
     for (int j = 0; j < ny; j++) {
         for (int i = 0; i < nx; i++) {
             double px = rect[0] + (i + 0.5) * dx, py = rect[1] + (j + 0.5) * dx;
@@ -53,7 +56,6 @@ int sph_plate_fill(sph_world *w, const double rect[4], int axis) {
                 (P->periodic[1] && (py < P->period_lo[1] || py >= P->period_hi[1])))
                 continue;
             int q = w->n;
-            if (sph_world_reserve(w, q + 1)) return -1;
             w->x[q] = px;
             w->y[q] = py;
             w->u[q] = w->v[q] = 0.0;

@@ -3,6 +3,7 @@
    the target), then series, axes, ticks, labels and legend are drawn. Segments are clipped
    in double precision before they reach cairo, whose fixed-point coordinates overflow for
    points far outside a fixed range. */
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -46,30 +47,46 @@ void sph_plot_defaults(sph_plot_spec *s) {
     s->legend = 1;
 }
 
-/* smallest 1, 2 or 5 x 10^k >= raw */
+/* smallest 1, 2 or 5 x 10^k >= raw (raw below DBL_MIN taken as DBL_MIN: log10 of 0 is -inf) */
 static double nice_step(double raw) {
+    if (!(raw >= DBL_MIN))
+        raw = DBL_MIN;
     double p = pow(10, floor(log10(raw))), f = raw / p;
     return (f <= 1 ? 1 : f <= 2 ? 2 : f <= 5 ? 5 : 10) * p;
 }
 
 int sph_plot_ticks(double lo, double hi, int most, double *ticks, int cap) {
     static const double mantissa[3] = {1, 2, 5};
-    double step, k, k1, e;
-    int n = 0, i = 0;
+    double step, k, k1, e, span;
+    int n = 0, i = 0, tries;
     if (!isfinite(lo) || !isfinite(hi) || !(hi > lo) || most < 2 || cap < 1)
         return 0;
-    /* the finest 1-2-5 step giving at most `most` ticks, from a step surely too fine */
-    e = floor(log10((hi - lo) / (2.0 * most)));
-    for (;;) {
+    /* Any finite range ends here. hi - lo may overflow (take the largest double: the step
+     * grows past it anyway). A span whose tick step would be below 1e-307 has no ticks:
+     * there log10 of it is -inf or pow(10, e) underflows to 0, and a step of 0 never gives
+     * few enough ticks (the search spun forever). The search is bounded besides. */
+    span = hi - lo;
+    if (!isfinite(span))
+        span = DBL_MAX;
+    e = floor(log10(span / (2.0 * most)));
+    if (!(e >= -307))
+        return 0;
+    for (tries = 0;; tries++) {
         step = mantissa[i] * pow(10, e);
         if (floor(hi / step + 1e-9) - ceil(lo / step - 1e-9) + 1 <= most)
             break;
+        if (tries > 3 * 700) /* past 1e308 the step is inf and the test above holds */
+            return 0;
         if (++i == 3)
             i = 0, e++;
     }
     k1 = floor(hi / step + 1e-9);
-    for (k = ceil(lo / step - 1e-9); k <= k1 && n < cap; k++)
-        ticks[n++] = fabs(k) < 0.5 ? 0 : k * step; /* exact 0, never -0 */
+    for (k = ceil(lo / step - 1e-9); k <= k1 && n < cap; k++) {
+        double v = fabs(k) < 0.5 ? 0 : k * step; /* exact 0, never -0 */
+        if (n > 0 && !(v > ticks[n - 1]))
+            break; /* k beyond 2^53: k + 1 == k, no new tick */
+        ticks[n++] = v;
+    }
     return n;
 }
 
@@ -105,11 +122,11 @@ static void auto_range(const sph_plot_spec *s, int axis, double *lo, double *hi)
         *lo = a, *hi = b > a ? b : 10 * a;
         return;
     }
-    if (a == b) {
-        d = a != 0 ? 0.1 * fabs(a) : 1;
+    if (a == b || !isnormal(b - a)) { /* one value, or two no step can tell apart */
+        d = fabs(a) >= 1e-300 ? 0.1 * fabs(a) : 1;
         a -= d, b += d;
     }
-    step = nice_step((b - a) / 5);
+    step = nice_step(b / 5 - a / 5); /* not (b - a) / 5: it overflows for data near +-DBL_MAX */
     *lo = floor(a / step + 1e-9) * step, *hi = ceil(b / step - 1e-9) * step;
 }
 

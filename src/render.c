@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "atomic.h"
 #include "message.h"
 #include "sph_pictures.h"
 
@@ -377,30 +378,25 @@ static cairo_status_t write_chunk(void *closure, const unsigned char *data, unsi
                                                               : CAIRO_STATUS_WRITE_ERROR;
 }
 
-/* Our own fopen so a failure says why (cairo's write_to_png only says "error while
-   writing to output stream"). A partly written file is removed. */
+/* Our own file so a failure says why (cairo's write_to_png only says "error while
+   writing to output stream"). Written to a temporary file renamed into place (atomic.h):
+   a failed write leaves an earlier picture at that path as it was. */
 int sph_render_write_png(cairo_surface_t *surface, const char *file, char *err, size_t errlen) {
-    FILE *fp;
+    sph_atomic_file af;
     cairo_status_t st;
     int e;
-    if (!file || !*file)
-        return sph_message_set(err, errlen, "no output file name");
-    fp = fopen(file, "wb");
-    if (!fp)
-        return sph_message_set(err, errlen, "cannot open '%s' for writing: %s", file, strerror(errno));
-    st = cairo_surface_write_to_png_stream(surface, write_chunk, fp);
+    if (sph_atomic_open(&af, file, err, errlen))
+        return -1;
+    errno = 0;
+    st = cairo_surface_write_to_png_stream(surface, write_chunk, af.fp);
     e = errno;
-    if (fclose(fp) != 0 && st == CAIRO_STATUS_SUCCESS) {
-        st = CAIRO_STATUS_WRITE_ERROR;
-        e = errno;
-    }
     if (st != CAIRO_STATUS_SUCCESS) {
-        remove(file);
-        if (st == CAIRO_STATUS_WRITE_ERROR)
+        sph_atomic_abort(&af);
+        if (st == CAIRO_STATUS_WRITE_ERROR && e)
             return sph_message_set(err, errlen, "cannot write '%s': %s", file, strerror(e));
         return sph_message_set(err, errlen, "cannot write '%s': %s", file, cairo_status_to_string(st));
     }
-    return 0;
+    return sph_atomic_commit(&af, err, errlen);
 }
 
 int sph_render_png(const sph_render_spec *s, const char *file, char *err, size_t errlen) {

@@ -54,7 +54,7 @@ typedef struct sph_params {
     double period_lo[2], period_hi[2];
     int symmetry[2];       /* mirror plane x = sym_at[0] / y = sym_at[1]           */
     double sym_at[2];
-    int threads;           /* 0: all cores                                         */
+    int threads;           /* 0: all cores; at most SPH_MAX_THREADS                */
     double tol;            /* pressure solver: relative residual; default 1e-6     */
     double visc_tol;       /* implicit viscous solve: relative residual; default
                               1e-6 (README, Speed: what looser costs)                */
@@ -135,6 +135,16 @@ enum { SPH_GRAD_SYMMETRIC = 0, SPH_GRAD_DIFFERENCE = 1, SPH_GRAD_AUTO = 2 /* den
 
 void sph_params_default(sph_params *p);
 
+/* OpenMP threads a world may ask for. A fixed bound, not a multiple of this machine's
+ * cores, so a state saved on a large machine still loads on a small one; far beyond it
+ * (threads = 100000) the OpenMP runtime overflowed its stack and crashed. */
+#define SPH_MAX_THREADS 256
+
+/* dx and h must lie in [SPH_MIN_LENGTH, SPH_MAX_LENGTH] (powers of them up to the fourth
+ * stay normal doubles), and the particle mass rho dx^2 must be a normal number. */
+#define SPH_MIN_LENGTH 1e-30
+#define SPH_MAX_LENGTH 1e30
+
 /* A new empty world; NULL with a message in err on bad parameters. */
 sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen);
 void sph_world_free(sph_world *w);
@@ -145,8 +155,14 @@ sph_world *sph_world_load(const char *file, char *err, size_t errlen);
 const char *sph_world_error(const sph_world *w);
 const sph_params *sph_world_params(const sph_world *w);
 
+/* Real particles (fluid and walls) a world holds at most: fills, plates and sph.load
+ * beyond it fail up front with the count asked for (2e8 is about 60 GB of arrays). */
+#define SPH_MAX_PARTICLES 200000000
+
 /* Fill rect {x0, y0, x1, y1} with fluid on the dx lattice (points at (i + 1/2) dx from
- * the lower-left corner); returns the number of particles added or -1. */
+ * the lower-left corner); returns the number of particles added or -1. All or nothing: on
+ * an error the world is unchanged. It is an error when the rect holds no lattice point,
+ * when none of its points lies in the simulated domain, or when any lies inside a plate. */
 int sph_world_fill(sph_world *w, const double rect[4], const sph_material *mat);
 
 /* Plates: rigid walls of particles filling rect (at least 3h thick). axis: -1 fixed,

@@ -7,7 +7,11 @@
  * with the uninterrupted one to the solvers' tolerances, not to the last bit (the pressure
  * multigrid hierarchy is reused for up to 20 steps in a run and rebuilt after a load). */
 #include "internal.h"
+#include "atomic.h"
 
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,8 +39,11 @@ static void header(state_header *h) {
 #define STATE_INTS(w) {w->kind, w->mat, w->id}
 
 int sph_world_save(sph_world *w, const char *file) {
-    FILE *f = fopen(file, "wb");
-    if (!f) return sph_world_fail(w, "cannot open '%s' for writing", file);
+    sph_atomic_file af; /* a failed save leaves an earlier state at that path as it was */
+    char why[512];
+    if (sph_atomic_open(&af, file, why, sizeof why)) return sph_world_fail(w, "%s", why);
+    FILE *f = af.fp;
+    errno = 0;
     state_header h;
     header(&h);
     int ok = fwrite(&h, sizeof h, 1, f) == 1;
@@ -63,48 +70,186 @@ int sph_world_save(sph_world *w, const char *file) {
         for (size_t k = 0; k < sizeof iv / sizeof *iv; k++) ok = ok && fwrite(iv[k], sizeof(int), n, f) == n;
         ok = ok && fwrite(w->surf, 1, n, f) == n;
     }
-    if (fclose(f) != 0) ok = 0;
-    if (!ok) return sph_world_fail(w, "writing '%s' failed", file);
+    if (!ok) {
+        int e = errno;
+        sph_atomic_abort(&af);
+        return sph_world_fail(w, "cannot write '%s': %s", file, strerror(e ? e : EIO));
+    }
+    if (sph_atomic_commit(&af, why, sizeof why)) return sph_world_fail(w, "%s", why);
     return 0;
 }
 
+/* sph_world_load reads through this: the first failure (short read or a bad value) is
+ * kept in err and every later step is skipped, so the loader reads as a straight line. */
+typedef struct {
+    FILE *f;
+    const char *file;
+    char *err;
+    size_t errlen;
+    int bad;
+} reader;
+
+static int rd(reader *r, void *p, size_t size, size_t count, const char *what) {
+    if (r->bad) return 0;
+    if (fread(p, size, count, r->f) != count) {
+        snprintf(r->err, r->errlen, "'%s' is truncated (reading %s)", r->file, what);
+        r->bad = 1;
+    }
+    return !r->bad;
+}
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+static int damaged(reader *r, const char *fmt, ...) {
+    if (r->bad) return -1;
+    int k = snprintf(r->err, r->errlen, "'%s' is damaged: ", r->file);
+    va_list ap;
+    va_start(ap, fmt);
+    if (k >= 0 && (size_t)k < r->errlen) vsnprintf(r->err + k, r->errlen - (size_t)k, fmt, ap);
+    va_end(ap);
+    r->bad = 1;
+    return -1;
+}
+
+static int finite_nonneg(double v) { return isfinite(v) && v >= 0; }
+
+/* A saved plate as the step needs it: everything is read as saved, so each field that
+ * indexes, divides or moves something is checked. */
+static int check_plate(reader *r, int k, const sph_plate *pl) {
+    for (int q = 0; q < 4; q++)
+        if (!isfinite(pl->rect[q]) || !isfinite(pl->rect0[q]))
+            return damaged(r, "plate %d: rect[%d] = %g is not finite", k + 1, q + 1,
+                           isfinite(pl->rect[q]) ? pl->rect0[q] : pl->rect[q]);
+    if (!(pl->rect[2] > pl->rect[0] && pl->rect[3] > pl->rect[1]))
+        return damaged(r, "plate %d: rect {%g, %g, %g, %g} is inverted", k + 1, pl->rect[0], pl->rect[1],
+                       pl->rect[2], pl->rect[3]);
+    if (pl->axis < -1 || pl->axis > 1) return damaged(r, "plate %d: axis %d is not -1, 0 or 1", k + 1, pl->axis);
+    if (pl->mode != SPH_PLATE_FIXED && pl->mode != SPH_PLATE_VELOCITY && pl->mode != SPH_PLATE_LOAD)
+        return damaged(r, "plate %d: mode %d is not fixed (0), velocity (1) or load (2)", k + 1, (int)pl->mode);
+    if (pl->mode != SPH_PLATE_FIXED && pl->axis < 0)
+        return damaged(r, "plate %d: mode %d on a fixed plate (axis -1)", k + 1, (int)pl->mode);
+    if (!(pl->mass > 0 && isfinite(pl->mass)))
+        return damaged(r, "plate %d: mass %g is not a positive finite number", k + 1, pl->mass);
+    const double v[] = {pl->vel, pl->vel_new, pl->load, pl->force, pl->force_visc, pl->slide[0], pl->slide[1]};
+    static const char *const names[] = {"velocity", "new velocity", "load", "force", "viscous force", "slide x",
+                                        "slide y"};
+    for (int q = 0; q < 7; q++)
+        if (!isfinite(v[q])) return damaged(r, "plate %d: %s %g is not finite", k + 1, names[q], v[q]);
+    if (pl->count < 0 || (pl->doubled != 0 && pl->doubled != 1) || (pl->mass_set != 0 && pl->mass_set != 1) ||
+        pl->face_side < -1 || pl->face_side > 1)
+        return damaged(r, "plate %d: count %d, doubled %d, mass_set %d or face_side %d out of range", k + 1,
+                       pl->count, pl->doubled, pl->mass_set, pl->face_side);
+    return 0;
+}
+
+/* The particles as read: kinds and materials index arrays, the doubles enter every sum
+ * (make_grid's min / max scan skips a NaN, so it must not get that far). */
+static int check_particles(reader *r, sph_world *w) {
+    static const char *const dn[] = {"x", "y", "u", "v", "ax", "ay", "p", "rho", "m", "phi", "eta", "gammadot"};
+    double *d[] = STATE_DOUBLES(w);
+    int fluid = 0;
+    for (int i = 0; i < w->n && !r->bad; i++) {
+        int kind = w->kind[i];
+        if (kind == SPH_FLUID) {
+            fluid++;
+            if (w->mat[i] < 0 || w->mat[i] >= w->nmats)
+                return damaged(r, "particle %d: material %d, the world has %d", i + 1, w->mat[i] + 1, w->nmats);
+        } else if (kind < 0 || kind >= w->nplates) {
+            return damaged(r, "particle %d: kind %d is neither fluid (-1) nor a plate of the %d", i + 1, kind,
+                           w->nplates);
+        }
+        if (w->id[i] < 0 || w->id[i] >= w->next_id)
+            return damaged(r, "particle %d: id %d not in [0, %d)", i + 1, w->id[i], w->next_id);
+        for (size_t k = 0; k < sizeof d / sizeof *d; k++)
+            if (!isfinite(d[k][i])) return damaged(r, "particle %d: %s = %g is not finite", i + 1, dn[k], d[k][i]);
+        for (int k = 0; k < SPH_MAX_LOADED; k++)
+            if (!isfinite(w->psens[k][i]))
+                return damaged(r, "particle %d: load sensitivity %d = %g is not finite", i + 1, k + 1, w->psens[k][i]);
+        if (!(w->rho[i] > 0) || !(w->m[i] > 0))
+            return damaged(r, "particle %d: rho = %g and m = %g must be positive", i + 1, w->rho[i], w->m[i]);
+        if (w->surf[i] > 1) return damaged(r, "particle %d: surface flag %d is not 0 or 1", i + 1, w->surf[i]);
+    }
+    if (!r->bad && fluid != w->nfluid)
+        return damaged(r, "the fluid count %d disagrees with the %d fluid particles", w->nfluid, fluid);
+    return r->bad ? -1 : 0;
+}
+
 sph_world *sph_world_load(const char *file, char *err, size_t errlen) {
-    FILE *f = fopen(file, "rb");
-    if (!f) {
+    reader r = {fopen(file, "rb"), file, err, errlen, 0};
+    if (!r.f) {
         snprintf(err, errlen, "cannot open '%s'", file);
         return 0;
     }
     state_header h, want;
     header(&want);
     sph_params par;
-    if (fread(&h, sizeof h, 1, f) != 1 || memcmp(&h, &want, sizeof h) != 0) {
+    if (fread(&h, sizeof h, 1, r.f) != 1 || memcmp(&h, &want, sizeof h) != 0) {
         snprintf(err, errlen, "'%s' is not a state saved by this build of sph (w:save)", file);
-        fclose(f);
+        fclose(r.f);
         return 0;
     }
-    if (fread(&par, sizeof par, 1, f) != 1) {
-        snprintf(err, errlen, "'%s' is truncated", file);
-        fclose(f);
+    if (!rd(&r, &par, sizeof par, 1, "the parameters")) {
+        fclose(r.f);
         return 0;
     }
-    sph_world *w = sph_world_new(&par, err, errlen);
+    if (par.threads < 0 || par.threads > SPH_MAX_THREADS) { /* named with its value, unlike check_params */
+        damaged(&r, "parameters: threads = %d: must be 1..%d (0: all cores)", par.threads, SPH_MAX_THREADS);
+        fclose(r.f);
+        return 0;
+    }
+    char why[256];
+    sph_world *w = sph_world_new(&par, why, sizeof why); /* checks every parameter */
     if (!w) {
-        fclose(f);
+        damaged(&r, "parameters: %s", why);
+        fclose(r.f);
         return 0;
     }
     w->par = par; /* as saved (sph_world_new fills in h and dt_min the same way) */
+    if (!(finite_nonneg(par.dt_min) && finite_nonneg(par.dt_max)))
+        damaged(&r, "parameters: dt_min %g and dt_max %g must be finite and >= 0", par.dt_min, par.dt_max);
+    if (rd(&r, &w->nmats, sizeof w->nmats, 1, "the material count") && (w->nmats < 0 || w->nmats > SPH_MAX_MATERIALS))
+        damaged(&r, "material count %d not in [0, %d]", w->nmats, SPH_MAX_MATERIALS);
+    rd(&r, w->mats, sizeof w->mats[0], SPH_MAX_MATERIALS, "the materials");
+    for (int k = 0; k < w->nmats && !r.bad; k++) {
+        const sph_material *m = &w->mats[k];
+        if (m->model != SPH_NEWTONIAN && m->model != SPH_BINGHAM && m->model != SPH_HERSCHEL_BULKLEY)
+            damaged(&r, "material %d: model %d is not newtonian (0), bingham (1) or herschel_bulkley (2)", k + 1,
+                    (int)m->model);
+        else if (sph_rheology_check(m))
+            damaged(&r, "material %d: %s", k + 1, sph_rheology_check(m));
+    }
+    if (rd(&r, &w->nplates, sizeof w->nplates, 1, "the plate count") && (w->nplates < 0 || w->nplates > SPH_MAX_PLATES))
+        damaged(&r, "plate count %d not in [0, %d]", w->nplates, SPH_MAX_PLATES);
+    rd(&r, w->plates, sizeof w->plates[0], SPH_MAX_PLATES, "the plates");
+    for (int k = 0; k < w->nplates && !r.bad; k++) check_plate(&r, k, &w->plates[k]);
     int ints[3];
     double dbl[4];
-    int ok = fread(&w->nmats, sizeof w->nmats, 1, f) == 1;
-    ok = ok && fread(w->mats, sizeof w->mats[0], SPH_MAX_MATERIALS, f) == SPH_MAX_MATERIALS;
-    ok = ok && fread(&w->nplates, sizeof w->nplates, 1, f) == 1;
-    ok = ok && fread(w->plates, sizeof w->plates[0], SPH_MAX_PLATES, f) == SPH_MAX_PLATES;
-    ok = ok && fread(ints, sizeof ints, 1, f) == 1 && fread(dbl, sizeof dbl, 1, f) == 1;
-    ok = ok && fread(&w->steps, sizeof w->steps, 1, f) == 1;
+    if (rd(&r, ints, sizeof ints, 1, "the particle counts")) {
+        if (ints[0] < 0 || ints[0] > SPH_MAX_PARTICLES)
+            damaged(&r, "particle count %d not in [0, %d]", ints[0], SPH_MAX_PARTICLES);
+        else if (ints[1] < 0 || ints[1] > ints[0])
+            damaged(&r, "fluid count %d not in [0, %d] (the particle count)", ints[1], ints[0]);
+        else if (ints[2] < ints[0])
+            damaged(&r, "next particle id %d below the particle count %d", ints[2], ints[0]);
+    }
+    if (rd(&r, dbl, sizeof dbl, 1, "the clock")) {
+        static const char *const names[] = {"t", "dt", "the previous dt", "wall_time"};
+        for (int q = 0; q < 4; q++)
+            if (!finite_nonneg(dbl[q])) {
+                damaged(&r, "%s = %g must be finite and >= 0", names[q], dbl[q]);
+                break;
+            }
+    }
+    if (rd(&r, &w->steps, sizeof w->steps, 1, "the step count") && w->steps < 0)
+        damaged(&r, "step count %ld is negative", w->steps);
     long wait[6];
-    ok = ok && fread(wait, sizeof wait, 1, f) == 1 && wait[1] >= 0 && wait[1] <= 1L << 20 && wait[3] >= 0 &&
-         wait[3] <= 1L << 20 && (wait[4] == 0 || wait[4] == 1) && (wait[5] == 0 || wait[5] == 1);
-    if (ok) {
+    if (rd(&r, wait, sizeof wait, 1, "the density correction's waits") &&
+        !(wait[1] >= 0 && wait[1] <= 1L << 20 && wait[3] >= 0 && wait[3] <= 1L << 20 && (wait[4] == 0 || wait[4] == 1) &&
+          (wait[5] == 0 || wait[5] == 1)))
+        damaged(&r, "density correction waits {%ld, %ld, %ld, %ld, %ld, %ld} out of range", wait[0], wait[1], wait[2],
+                wait[3], wait[4], wait[5]);
+    if (!r.bad) {
         w->fallback_after = wait[0];
         w->fallback_wait = (int)wait[1];
         w->passes_after = wait[2];
@@ -112,12 +257,13 @@ sph_world *sph_world_load(const char *file, char *err, size_t errlen) {
         w->later_stalled = (int)wait[4];
         w->first_difference = (int)wait[5];
     }
-    ok = ok && fread(&w->st, sizeof w->st, 1, f) == 1;
-    ok = ok && fread(w->phase_time, sizeof w->phase_time, 1, f) == 1;
-    ok = ok && ints[0] >= 0 && ints[1] >= 0 && ints[1] <= ints[0] && w->nmats >= 0 &&
-         w->nmats <= SPH_MAX_MATERIALS && w->nplates >= 0 && w->nplates <= SPH_MAX_PLATES;
-    if (ok && ints[0] > 0 && sph_world_reserve(w, ints[0])) ok = 0;
-    if (ok) {
+    rd(&r, &w->st, sizeof w->st, 1, "the statistics");
+    rd(&r, w->phase_time, sizeof w->phase_time, 1, "the phase times");
+    if (!r.bad && ints[0] > 0 && sph_world_reserve(w, ints[0])) {
+        snprintf(err, errlen, "'%s': %s", file, sph_world_error(w));
+        r.bad = 1;
+    }
+    if (!r.bad) {
         w->n = ints[0];
         w->nfluid = ints[1];
         w->next_id = ints[2];
@@ -127,18 +273,15 @@ sph_world *sph_world_load(const char *file, char *err, size_t errlen) {
         w->wall_time = dbl[3];
         size_t n = (size_t)w->n;
         double *d[] = STATE_DOUBLES(w);
-        for (size_t k = 0; k < sizeof d / sizeof *d; k++) ok = ok && fread(d[k], sizeof(double), n, f) == n;
-        for (int k = 0; k < SPH_MAX_LOADED; k++) ok = ok && fread(w->psens[k], sizeof(double), n, f) == n;
+        for (size_t k = 0; k < sizeof d / sizeof *d; k++) rd(&r, d[k], sizeof(double), n, "the particles' doubles");
+        for (int k = 0; k < SPH_MAX_LOADED; k++) rd(&r, w->psens[k], sizeof(double), n, "the load sensitivities");
         int *iv[] = STATE_INTS(w);
-        for (size_t k = 0; k < sizeof iv / sizeof *iv; k++) ok = ok && fread(iv[k], sizeof(int), n, f) == n;
-        ok = ok && fread(w->surf, 1, n, f) == n;
-        for (size_t i = 0; ok && i < n; i++) /* kinds and fluid materials in range */
-            ok = w->kind[i] == SPH_FLUID ? w->mat[i] >= 0 && w->mat[i] < w->nmats
-                                         : w->kind[i] >= 0 && w->kind[i] < w->nplates;
+        for (size_t k = 0; k < sizeof iv / sizeof *iv; k++) rd(&r, iv[k], sizeof(int), n, "the particles' ints");
+        rd(&r, w->surf, 1, n, "the surface flags");
+        if (!r.bad) check_particles(&r, w);
     }
-    fclose(f);
-    if (!ok) {
-        snprintf(err, errlen, "'%s' is truncated or damaged", file);
+    fclose(r.f);
+    if (r.bad) {
         sph_world_free(w);
         return 0;
     }

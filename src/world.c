@@ -3,6 +3,7 @@
 #include "internal.h"
 #include "kernel.h"
 
+#include <limits.h>
 #include <math.h>
 #include <omp.h>
 #include <stdarg.h>
@@ -65,7 +66,9 @@ static const char *check_params(const sph_params *p) {
         "pressure_gradient must be SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE", "wall_curved must be 0 or 1",
         "projection_passes must be in [0, 10]", "density_descent must be in [0, 100]", "visc_tol must be in (0, 1)",
         "dt_eased must be 0 or 1", "density_wait must be in [0, 1000]", "density_probe must be in [0, 1)",
-        "density_gradient must be SPH_GRAD_AUTO, SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE"};
+        "density_gradient must be SPH_GRAD_AUTO, SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE",
+        "threads must be 1..256 (0: all cores)"};
+    _Static_assert(SPH_MAX_THREADS == 256, "the threads message names the bound");
     if (!(p->dx > 0 && isfinite(p->dx))) return bad[0];
     if (!(p->h >= 0 && isfinite(p->h))) return bad[1];
     if (!(p->rho0 > 0 && isfinite(p->rho0))) return bad[2];
@@ -98,6 +101,7 @@ static const char *check_params(const sph_params *p) {
     if (p->density_gradient != SPH_GRAD_SYMMETRIC && p->density_gradient != SPH_GRAD_DIFFERENCE &&
         p->density_gradient != SPH_GRAD_AUTO)
         return bad[27];
+    if (!(p->threads >= 0 && p->threads <= SPH_MAX_THREADS)) return bad[28];
     return 0;
 }
 
@@ -105,6 +109,22 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
     const char *bad = check_params(p);
     if (bad) {
         if (err) snprintf(err, errlen, "%s", bad);
+        return 0;
+    }
+    /* The step squares and cubes the lengths (mass rho dx^2, kernel gradients 1 / h^3, the
+     * Laplacian's 1 / h^4): outside these bounds they underflow to 0 or overflow. */
+    double h = p->h > 0 ? p->h : p->dx;
+    int dx_ok = p->dx >= SPH_MIN_LENGTH && p->dx <= SPH_MAX_LENGTH;
+    if (!dx_ok || !(h >= SPH_MIN_LENGTH && h <= SPH_MAX_LENGTH)) {
+        if (err)
+            snprintf(err, errlen, "%s = %g is out of range: it must be in [%g, %g]", dx_ok ? "h" : "dx",
+                     dx_ok ? h : p->dx, SPH_MIN_LENGTH, SPH_MAX_LENGTH);
+        return 0;
+    }
+    if (!isnormal(p->rho0 * p->dx * p->dx) || !isfinite(p->rho0 * p->dx * p->dx)) {
+        if (err)
+            snprintf(err, errlen, "the particle mass rho dx^2 = %g * %g^2 is not a normal positive number", p->rho0,
+                     p->dx);
         return 0;
     }
     sph_world *w = calloc(1, sizeof *w);
@@ -120,6 +140,7 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
     w->eps2 = 0.01 * w->h * w->h;
     w->mass0 = p->rho0 * p->dx * p->dx;
     w->threads = p->threads > 0 ? p->threads : omp_get_num_procs();
+    if (w->threads > SPH_MAX_THREADS) w->threads = SPH_MAX_THREADS; /* a machine of more cores */
     if (w->par.dt_min <= 0) w->par.dt_min = 1e-12 * w->h;
     return w;
 }
@@ -164,7 +185,10 @@ void sph_world_free(sph_world *w) {
 /* Room for `need` particles (real and ghosts) in every per-particle array. */
 int sph_world_reserve(sph_world *w, int need) {
     if (need <= w->cap) return 0;
-    int cap = need + need / 2 + 256;
+    /* the growth margin in long long: need + need / 2 overflows int from 1.4e9 on */
+    if (need < 0) return sph_world_fail(w, "cannot hold %d particles", need);
+    long long want = (long long)need + need / 2 + 256;
+    int cap = want > INT_MAX ? INT_MAX : (int)want;
     double **d[] = PARTICLE_DOUBLES(w);
     for (size_t k = 0; k < sizeof d / sizeof *d; k++) {
         double *q = realloc(*d[k], sizeof(double) * (size_t)cap);
@@ -200,40 +224,90 @@ int sph_world_reserve(sph_world *w, int need) {
     return 0;
 }
 
+int sph_world_lattice(sph_world *w, const double rect[4], const char *what, int *nx, int *ny) {
+    if (!isfinite(rect[0]) || !isfinite(rect[1]) || !isfinite(rect[2]) || !isfinite(rect[3]))
+        return sph_world_fail(w, "%s rect {%g, %g, %g, %g} must be finite", what, rect[0], rect[1], rect[2],
+                              rect[3]);
+    if (!(rect[2] > rect[0] && rect[3] > rect[1]))
+        return sph_world_fail(w, "%s rect {%g, %g, %g, %g} must have x0 < x1 and y0 < y1", what, rect[0],
+                              rect[1], rect[2], rect[3]);
+    /* counted in doubles: a wide rect at a small dx is far beyond int (and converting such
+     * a double to int is undefined); the width of a finite rect may still overflow to inf */
+    double fx = floor((rect[2] - rect[0]) / w->dx + 0.5), fy = floor((rect[3] - rect[1]) / w->dx + 0.5);
+    if (!(fx >= 1 && fy >= 1))
+        return sph_world_fail(w, "%s rect {%g, %g, %g, %g} holds no lattice point at dx = %g", what, rect[0],
+                              rect[1], rect[2], rect[3], w->dx);
+    if (!(fx * fy <= (double)(SPH_MAX_PARTICLES - w->n)))
+        return sph_world_fail(w,
+                              "%s rect {%g, %g, %g, %g} at dx = %g asks for %.4g particles: with the %d "
+                              "already there more than the %d a world holds",
+                              what, rect[0], rect[1], rect[2], rect[3], w->dx, fx * fy, w->n, SPH_MAX_PARTICLES);
+    *nx = (int)fx;
+    *ny = (int)fy;
+    return 0;
+}
+
+/* Lattice point (i, j) of a fluid rect: 0 when it is filled, 1 when it lies outside the
+ * simulated domain (behind a symmetry plane, outside a periodic range), 2 + k when it lies
+ * inside plate k. */
+static int fluid_point(const sph_world *w, const double rect[4], int i, int j, double *px, double *py) {
+    const sph_params *P = &w->par;
+    double x = rect[0] + (i + 0.5) * w->dx, y = rect[1] + (j + 0.5) * w->dx;
+    *px = x;
+    *py = y;
+    if ((P->symmetry[0] && x < P->sym_at[0]) || (P->symmetry[1] && y < P->sym_at[1])) return 1;
+    if ((P->periodic[0] && (x < P->period_lo[0] || x >= P->period_hi[0])) ||
+        (P->periodic[1] && (y < P->period_lo[1] || y >= P->period_hi[1])))
+        return 1;
+    for (int k = 0; k < w->nplates; k++) {
+        const double *R = w->plates[k].rect;
+        if (x > R[0] && x < R[2] && y > R[1] && y < R[3]) return 2 + k;
+    }
+    return 0;
+}
+
+/* All or nothing: the points are counted (and every check made) first, room for all of
+ * them reserved at once, and only then the world changed, so a failure (out of memory, a
+ * plate in the way) leaves it as it was. */
 int sph_world_fill(sph_world *w, const double rect[4], const sph_material *mat) {
     const char *bad = sph_rheology_check(mat);
     if (bad) return sph_world_fail(w, "material: %s", bad);
-    if (!(rect[2] > rect[0] && rect[3] > rect[1]))
-        return sph_world_fail(w, "rect {%g, %g, %g, %g} must have x0 < x1 and y0 < y1", rect[0],
-                              rect[1], rect[2], rect[3]);
+    int nx, ny;
+    if (sph_world_lattice(w, rect, "fill", &nx, &ny)) return -1;
     int mi = -1;
     for (int k = 0; k < w->nmats; k++)
         if (!memcmp(&w->mats[k], mat, sizeof *mat)) mi = k;
+    if (mi < 0 && w->nmats == SPH_MAX_MATERIALS)
+        return sph_world_fail(w, "too many materials (at most %d)", SPH_MAX_MATERIALS);
+    int count = 0, overlap = 0, plate = -1;
+    double px, py;
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++) {
+            int at = fluid_point(w, rect, i, j, &px, &py);
+            if (at == 0) count++;
+            if (at >= 2) {
+                overlap++;
+                if (plate < 0) plate = at - 2;
+            }
+        }
+    /* a fluid cannot fill a plate: those points would be lost without a word */
+    if (overlap)
+        return sph_world_fail(w, "fill rect {%g, %g, %g, %g} overlaps plate %d: %d of its lattice points at dx = %g "
+                                 "lie inside a plate", rect[0], rect[1], rect[2], rect[3], plate + 1, overlap, w->dx);
+    if (count == 0)
+        return sph_world_fail(w, "fill rect {%g, %g, %g, %g} has no lattice point inside the simulated domain "
+                                 "(behind the symmetry plane or outside the periodic range)",
+                              rect[0], rect[1], rect[2], rect[3]);
+    if (sph_world_reserve(w, w->n + count)) return -1;
     if (mi < 0) {
-        if (w->nmats == SPH_MAX_MATERIALS) return sph_world_fail(w, "too many materials");
         w->mats[w->nmats] = *mat;
         mi = w->nmats++;
     }
     const sph_params *P = &w->par;
-    double dx = w->dx;
-    int nx = (int)floor((rect[2] - rect[0]) / dx + 0.5), ny = (int)floor((rect[3] - rect[1]) / dx + 0.5);
-    int added = 0;
     for (int j = 0; j < ny; j++)
         for (int i = 0; i < nx; i++) {
-            double px = rect[0] + (i + 0.5) * dx, py = rect[1] + (j + 0.5) * dx;
-            if ((P->symmetry[0] && px < P->sym_at[0]) || (P->symmetry[1] && py < P->sym_at[1]))
-                continue;
-            if ((P->periodic[0] && (px < P->period_lo[0] || px >= P->period_hi[0])) ||
-                (P->periodic[1] && (py < P->period_lo[1] || py >= P->period_hi[1])))
-                continue;
-            int inside = 0; /* never fill inside a plate */
-            for (int k = 0; k < w->nplates && !inside; k++) {
-                const double *R = w->plates[k].rect;
-                inside = px > R[0] && px < R[2] && py > R[1] && py < R[3];
-            }
-            if (inside) continue;
-            int q = w->n;
-            if (sph_world_reserve(w, q + 1)) return -1;
+            if (fluid_point(w, rect, i, j, &px, &py)) continue;
+            int q = w->n++;
             w->x[q] = px;
             w->y[q] = py;
             w->u[q] = w->v[q] = 0.0;
@@ -243,18 +317,15 @@ int sph_world_fill(sph_world *w, const double rect[4], const sph_material *mat) 
             w->rho[q] = P->rho0;
             w->eta[q] = sph_rheology_eta(mat, 0.0);
             w->id[q] = w->next_id++;
-            w->n++;
-            added++;
         }
-    w->nfluid += added;
+    w->nfluid += count;
     w->prepared = 0;
-    return added;
+    return count;
 }
 
 int sph_world_plate(sph_world *w, const double rect[4], int axis) {
-    if (!(rect[2] > rect[0] && rect[3] > rect[1]))
-        return sph_world_fail(w, "rect {%g, %g, %g, %g} must have x0 < x1 and y0 < y1", rect[0],
-                              rect[1], rect[2], rect[3]);
+    int nx, ny;
+    if (sph_world_lattice(w, rect, "plate", &nx, &ny)) return -1;
     if (axis < -1 || axis > 1) return sph_world_fail(w, "axis must be -1, 0 or 1");
     /* fluid already inside the new plate would start through it */
     for (int i = 0; i < w->n; i++)
@@ -434,11 +505,29 @@ void sph_lap(sph_world *w, int phase) {
 }
 
 
+/* A dt the caller gives may be at most this many times the viscous time rho h^2 / max eta
+ * of the fluid: beyond it no flow is resolved (w:step(1e300) used to pass, t = 2e300). */
+#define SPH_DT_SPAN 1e6
+
 int sph_world_step(sph_world *w, double dt) {
     double t0 = omp_get_wtime();
     w->lap = t0;
     prepare(w);
     if (w->nfluid == 0) return sph_world_fail(w, "the world has no fluid: call fill first");
+    if (!isfinite(dt))
+        return sph_world_fail(w, "dt must be a finite positive number (or <= 0: adaptive), got %g at step %ld (t = %g)",
+                              dt, w->steps, w->t);
+    if (dt > 0) {
+        double etamax = 0.0;
+        for (int i = 0; i < w->n; i++)
+            if (w->kind[i] == SPH_FLUID && w->eta[i] > etamax) etamax = w->eta[i];
+        double bound = SPH_DT_SPAN * w->par.rho0 * w->h * w->h / etamax;
+        if (etamax > 0 && dt > bound)
+            return sph_world_fail(w,
+                                  "dt = %g exceeds the bound %g (%g times the viscous time rho h^2 / max eta) "
+                                  "at step %ld (t = %g)",
+                                  dt, bound, SPH_DT_SPAN, w->steps, w->t);
+    }
     if (!(dt > 0)) dt = sph_timestep_compute(w);
     if (!isfinite(dt) || dt < w->par.dt_min) {
         char why[512];

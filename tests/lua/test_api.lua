@@ -53,6 +53,14 @@ T.case("world arguments", function()
   T.checkerror('dt_growth: "fixed" or "eased" expected', "dt_growth = fast", sph.world, { dx = 0.1, dt_growth = "fast" })
   T.checkerror("pressure_predictor", "pressure_predictor = 1.5", sph.world, { dx = 0.1, pressure_predictor = 1.5 })
   T.checkerror("density_relax", "density_relax = 2", sph.world, { dx = 0.1, density_relax = 2 })
+  -- threads are capped (SPH_MAX_THREADS): 100000 overflowed the OpenMP runtime's stack
+  T.checkerror("threads must be 1..256 (0: all cores), got 100000", "threads = 100000", sph.world,
+               { dx = 0.1, threads = 100000 })
+  T.checkerror("threads must be 1..256 (0: all cores), got 257", "threads = 257", sph.world, { dx = 0.1, threads = 257 })
+  T.checkerror("got -1", "threads = -1", sph.world, { dx = 0.1, threads = -1 })
+  T.checkerror("got 2.5", "threads = 2.5", sph.world, { dx = 0.1, threads = 2.5 })
+  T.checkerror("got 1e+20", "threads = 1e20 (beyond int)", sph.world, { dx = 0.1, threads = 1e20 })
+  T.check(pcall(sph.world, { dx = 0.1, threads = 256 }), "threads = 256 is accepted")
   T.checkerror("table expected", "world needs a table", sph.world, 3)
 end)
 
@@ -183,6 +191,85 @@ T.case("laws", function()
   T.checkerror("each", "run with a non-function each", w.run, w, { until_t = 1, each = 3 })
 end)
 
+T.case("step: the dt given must be finite and within bounds", function()
+  local w = sph.world{ dx = 0.1, threads = 1 }
+  w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
+  -- the viscous time rho h^2 / max eta is 0.01 here: the bound is 10^6 times that
+  T.checkerror("dt = 1e+300 exceeds the bound 10000", "w:step(1e300) is refused, naming dt and the bound", w.step, w, 1e300)
+  T.checkerror("dt must be a finite positive number (or <= 0: adaptive), got inf", "w:step(math.huge)", w.step, w,
+               math.huge)
+  T.checkerror("dt must be a finite positive number", "w:step(NaN)", w.step, w, 0 / 0)
+  T.checkerror("dt must be a finite positive number", "w:step(-math.huge)", w.step, w, -math.huge)
+  T.checkerror("dt must be a finite positive number", "w:run with dt = math.huge", w.run, w,
+               { until_t = 1, dt = math.huge })
+  T.check(w.t == 0 and w.steps == 0, "the refused steps left the clock alone", w.t)
+  w:step(1e-3)
+  T.check(w.t == 1e-3 and w.steps == 1, "a dt within the bound steps", w.t)
+end)
+
+T.case("a callback that closes its world", function()
+  -- a plate law or run's each may close the world it is called from: the step or run then
+  -- raises (its engine world is gone), it does not go on with freed memory
+  local function world()
+    local w = sph.world{ dx = 0.1, threads = 1 }
+    w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
+    w:plate{ rect = { -1, -0.3, 2, 0 } }
+    return w, w:plate{ rect = { -1, 1, 2, 1.3 }, axis = "y" }
+  end
+  local w, top = world()
+  top:velocity(function() w:close(); return -1 end)
+  T.checkerror("world closed during w:step", "a velocity law closing the world stops step", w.step, w)
+  T.checkerror("closed sph.world", "the world stays closed after that", function() w:step() end)
+  w, top = world()
+  top:load(function() w:close(); return 1 end)
+  T.checkerror("world closed during w:run", "a load law closing the world stops run", w.run, w, { until_t = 1 })
+  w = world()
+  T.checkerror("world closed during w:run (in its each function)", "each closing the world stops run", w.run, w,
+               { until_t = 1, every = 1e-9, each = function(ww) ww:close() end })
+  w = world()
+  T.checkerror("world closed during w:run (in its each function)", "each closing the world and returning false",
+               w.run, w, { until_t = 1, every = 1e-9, each = function(ww) ww:close(); return false end })
+end)
+
+T.case("fill: bounds and all or nothing", function()
+  local water = sph.newtonian{ mu = 1 }
+  local w = sph.world{ dx = 0.1, threads = 1 }
+  T.check(w:fill{ rect = { 0, 0, 1, 1 }, material = water } == 100, "a first fill of 100 particles")
+  local function consistent(what)
+    local n = w:stats().fluid
+    T.check(n == 100 and #w:field("x") == 100 and #w:field("u") == 100,
+            "after " .. what .. " the world still holds its 100 particles", n)
+  end
+  T.checkerror("asks for 1e+14 particles", "a rect of 1e14 lattice points is refused up front", w.fill, w,
+               { rect = { 0, 0, 1e6, 1e6 }, material = water })
+  consistent("a refused huge fill")
+  local fine = sph.world{ dx = 1e-5 }
+  T.checkerror("at dx = 1e-05 asks for 1e+22 particles", "rect {0, 0, 1e6, 1e6} at dx = 1e-5 names the count",
+               fine.fill, fine, { rect = { 0, 0, 1e6, 1e6 }, material = water })
+  T.check(fine:stats().fluid == 0, "that world stays empty")
+  T.checkerror("must be finite", "an infinite rect", w.fill, w, { rect = { 0, 0, math.huge, 1 }, material = water })
+  T.checkerror("must be finite", "a rect from -inf", w.fill, w, { rect = { -math.huge, 0, 1, 1 }, material = water })
+  T.checkerror("x0 < x1", "a NaN in the rect", w.fill, w, { rect = { 0, 0, 0 / 0, 1 }, material = water })
+  T.checkerror("asks for inf particles", "a rect whose width overflows", w.fill, w,
+               { rect = { -1e308, 0, 1e308, 1 }, material = water })
+  T.checkerror("holds no lattice point at dx = 0.1", "a rect narrower than dx", w.fill, w,
+               { rect = { 2, 0, 2.04, 1 }, material = water })
+  T.checkerror("must be finite", "a plate with an infinite rect", w.plate, w, { rect = { 0, -1, math.huge, 0 } })
+  T.checkerror("asks for", "a plate of too many particles", w.plate, w, { rect = { -1e9, -1e9, 1e9, -1 } })
+  consistent("refused rects")
+  w:plate{ rect = { -1, -0.3, 2, 0 } }
+  T.checkerror("overlaps plate 1: 10 of its lattice points", "a fill into a plate names the overlap", w.fill, w,
+               { rect = { 1.5, -0.2, 2.5, 0.8 }, material = water })
+  consistent("a fill into a plate")
+  local half = sph.world{ dx = 0.1, symmetry = { x = 0 } }
+  T.checkerror("no lattice point inside the simulated domain", "a fill wholly behind the symmetry plane",
+               half.fill, half, { rect = { -1, 0, -0.5, 1 }, material = water })
+  T.checkerror("dx = 1e-300 is out of range", "dx = 1e-300", sph.world, { dx = 1e-300 })
+  T.checkerror("dx = 1e+300 is out of range", "dx = 1e300", sph.world, { dx = 1e300 })
+  T.checkerror("h = 1e-31 is out of range", "h = 1e-31", sph.world, { dx = 1e-5, h = 1e-31 })
+  T.checkerror("particle mass", "a particle mass that underflows", sph.world, { dx = 1e-20, rho = 1e-300 })
+end)
+
 -- a 10 x 10 Bingham box between two plates, the upper one at V = -1, after three steps
 local function squeezed_box()
   local w = sph.world{ dx = 0.1, threads = 1 }
@@ -266,6 +353,56 @@ T.case("files and closing", function()
   w:close()
   T.checkerror("closed sph.world", "a closed world raises", function() w:step() end)
   T.checkerror("closed sph.world", "closing twice raises, as for a closed file", function() w:close() end)
+end)
+
+-- Every writer replaces its file whole (src/atomic.c): a write that fails leaves the file
+-- that was there byte for byte, and no temporary file. The failure is real: a child sph
+-- under a file size limit of 1 KB (ulimit -f 2, SIGXFSZ ignored) whose writes stop with
+-- "File too large"; before, the writers truncated the old file first.
+T.case("a failed write leaves the old file", function()
+  local base = os.tmpname()
+  local names = { csv = base .. ".csv", vtk = base .. ".vtk", save = base .. ".state" }
+  local old = "old bytes\n"
+  for _, f in pairs(names) do
+    local g = assert(io.open(f, "wb")); g:write(old); g:close()
+  end
+  local script = base .. ".lua"
+  local g = assert(io.open(script, "w"))
+  g:write([[
+local sph = require "sph"
+local o = ...
+local w = sph.world{ dx = 0.1, threads = 1 }
+w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
+print("csv", w:write_csv(o.base .. ".csv"))
+print("vtk", w:write_vtk(o.base .. ".vtk"))
+print("save", pcall(w.save, w, o.base .. ".state"))
+]])
+  g:close()
+  local p = io.popen("sh -c \"trap '' XFSZ; ulimit -f 2; exec '" .. arg[-1] .. "' '" .. script .. "' base='" .. base ..
+                     "'\" 2>&1")
+  local out = p:read("a")
+  p:close()
+  for what, f in pairs(names) do
+    local line = out:match(what .. "\t([^\n]*)") or "(no line)"
+    T.check(line:find("File too large", 1, true) and line:find(f, 1, true),
+            what .. " under a 1 KB file limit fails, naming the file and why", line)
+    local h = io.open(f, "rb")
+    local now = h and h:read("a")
+    if h then h:close() end
+    T.check(now == old, what .. ": the old file keeps its bytes after the failed write", now and #now .. " bytes")
+    os.remove(f)
+  end
+  local left = io.popen("ls '" .. base .. "'.*.tmp.* 2>/dev/null | wc -l"):read("a")
+  T.check(tonumber(left) == 0, "no temporary file left behind", left)
+  os.remove(script)
+  os.remove(base)
+  local w = sph.world{ dx = 0.1 }
+  w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
+  T.checkerror("cannot open '/nonexistent-sph-dir/s.state' for writing: No such file or directory",
+               "w:save into a missing directory names the file and why", w.save, w, "/nonexistent-sph-dir/s.state")
+  local ok, msg = w:write_csv("/nonexistent-sph-dir/p.csv")
+  T.check(ok == nil and msg == "cannot open '/nonexistent-sph-dir/p.csv' for writing: No such file or directory",
+          "write_csv into a missing directory names the file and why", msg)
 end)
 
 T.case("solver = amg and jacobi agree", function()

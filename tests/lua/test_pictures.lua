@@ -164,6 +164,29 @@ T.case("render a field with a fixed range", function()
     "a constant field with a colour bar renders")
 end)
 
+T.case("ranges of any finite width end", function()
+  -- the tick search of a colour bar or an axis ends for any finite range: a span of one
+  -- subnormal (its tick step underflowed to 0 and the search spun forever), the widest
+  -- doubles, equal ends
+  local w = sph.world{ dx = 0.1 }
+  w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
+  local f = tmp("ranges.png")
+  local line = { x = { 0, 1 }, y = { 0, 1 } }
+  local ranges = { { 0, 5e-324 }, { 5e-324, 1e-323 }, { 1, 1 }, { -1.7976931348623157e308, 1.7976931348623157e308 },
+                   { 1e17, 1e17 + 16 } }
+  for _, r in ipairs(ranges) do
+    local what = string.format("{%g, %g}", r[1], r[2])
+    T.check(w:render{ file = f, width = 120, height = 80, color = "p", range = r } == true,
+            "render with range " .. what .. " ends")
+    if r[1] < r[2] then
+      T.check(sph.plot{ file = f, width = 160, height = 120, xrange = r, yrange = r, series = { line } } == true,
+              "plot with xrange and yrange " .. what .. " ends")
+    end
+  end
+  T.check(sph.plot{ file = f, width = 160, height = 120, series = { { x = { 0, 5e-324 }, y = { 0, 5e-324 } } } } == true,
+          "plot of data a subnormal apart (automatic range) ends")
+end)
+
 T.case("render mirror and label", function()
   local w = sph.world{ dx = 0.1, symmetry = { x = 0 } }
   w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
@@ -252,6 +275,46 @@ T.case("failed writes", function()
   w:render{ file = f, width = 50, height = 50 }
   r, m = sph.animate{ frames = { f }, file = bad }
   T.check(r == nil and type(m) == "string" and m:find(bad, 1, true), "animate to a bad path: nil and message", tostring(m))
+end)
+
+-- A picture replaces its file whole (src/atomic.c): a write that fails (here for real: a
+-- child sph under a 1 KB file size limit, SIGXFSZ ignored) leaves the old file byte for
+-- byte and no temporary file; before, the writers truncated it first.
+T.case("a failed picture write leaves the old file", function()
+  local names = { render = tmp("old_render.png"), plot = tmp("old_plot.png"), animate = tmp("old_anim.png") }
+  local frame = tmp("old_frame.png")
+  local w = sph.world{ dx = 0.1 }
+  w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
+  w:render{ file = frame, width = 300, height = 200 }
+  local old = "old bytes\n"
+  for _, f in pairs(names) do
+    local g = assert(io.open(f, "wb")); g:write(old); g:close()
+  end
+  local script = tmp("old.lua")
+  local g = assert(io.open(script, "w"))
+  g:write(string.format([[
+local sph = require "sph"
+local w = sph.world{ dx = 0.1, threads = 1 }
+w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
+print("render", w:render{ file = %q, width = 300, height = 200 })
+print("plot", sph.plot{ file = %q, series = { { x = { 0, 1 }, y = { 0, 1 } } } })
+print("animate", sph.animate{ frames = { %q, %q }, file = %q })
+]], names.render, names.plot, frame, frame, names.animate))
+  g:close()
+  local p = io.popen("sh -c \"trap '' XFSZ; ulimit -f 2; exec '" .. arg[-1] .. "' '" .. script .. "'\" 2>&1")
+  local out = p:read("a")
+  p:close()
+  for what, f in pairs(names) do
+    local line = out:match(what .. "\t([^\n]*)") or "(no line)"
+    T.check(line:find("nil", 1, true) and line:find(f, 1, true), what .. " under a 1 KB file limit fails, naming the file",
+            line)
+    local h = io.open(f, "rb")
+    local now = h and h:read("a")
+    if h then h:close() end
+    T.check(now == old, what .. ": the old file keeps its bytes after the failed write", now and #now .. " bytes")
+  end
+  local left = io.popen("ls '" .. base .. "'_old*.tmp.* 2>/dev/null | wc -l"):read("a")
+  T.check(tonumber(left) == 0, "no temporary file left behind", left)
 end)
 
 T.case("argument errors", function()

@@ -93,4 +93,111 @@ T.case("save, load and continue: the density passes' starting form", function()
   os.remove(file)
 end)
 
+-- sph.load checks every field it reads (src/state.c): a damaged file is an error naming
+-- the field, never a world that crashes or computes with garbage later. The files are
+-- w:save's with bytes patched; the offsets come from the header's sizes and the layout of
+-- state.c, and a field inside a struct is found as the first byte where two saves that
+-- differ only in it differ.
+T.case("sph.load checks what it reads", function()
+  local function build(opts)
+    opts = opts or {}
+    local w = sph.world{ dx = 0.1, threads = opts.threads or 1 }
+    w:fill{ rect = { 0, 0, 1, 1 }, material = opts.mat or sph.newtonian{ mu = 1 } }
+    w:plate{ rect = { -1, -0.3, 2, 0 } }
+    local top = w:plate{ rect = { -1, 1, 2, 1.3 }, axis = opts.axis or "y" }
+    if opts.velocity then top:velocity(0) end
+    if opts.mass then top.mass = opts.mass end
+    return w
+  end
+  local function saved(w)
+    local f = os.tmpname()
+    w:save(f)
+    local g = assert(io.open(f, "rb"))
+    local d = g:read("a")
+    g:close()
+    os.remove(f)
+    return d
+  end
+  local function first_diff(a, b)
+    for i = 1, math.min(#a, #b) do if a:byte(i) ~= b:byte(i) then return i end end
+  end
+  local base = saved(build())
+  local w = build()
+  local n = w:stats().particles
+  -- header: magic, then the sizes of sph_params, sph_material, sph_plate, sph_stats
+  local _, P, M, PL, S = string.unpack("<c8I4I4I4I4", base)
+  local nmats_at = 28 + P + 1                       -- 1-based positions from here on
+  local nplates_at = nmats_at + 4 + 64 * M
+  local ints_at = nplates_at + 4 + 64 * PL          -- n, nfluid, next_id
+  local clock_at = ints_at + 12                     -- t, dt, dt_prev, wall_time
+  local parts_at = #base - n * (16 * 8 + 3 * 4 + 1) + 1 -- 12 doubles, 4 sensitivities, 3 ints, a flag per particle
+  local kind_at, mat_at = parts_at + 16 * 8 * n, parts_at + 16 * 8 * n + 4 * n
+  local mats_at, plates_at = nmats_at + 4, nplates_at + 4
+  local function check(at, bytes, msg, name, data)
+    data = data or base
+    local f = os.tmpname()
+    local g = assert(io.open(f, "wb"))
+    g:write(data)
+    g:close()
+    g = assert(io.open(f, "r+b")) -- patched in place, as a damaged disk would leave it
+    g:seek("set", at - 1)
+    g:write(bytes)
+    g:close()
+    T.checkerror(msg, "sph.load: " .. name, sph.load, f)
+    os.remove(f)
+  end
+  T.check(string.unpack("<i4", base, ints_at) == n, "the layout is understood (n read back at its offset)")
+  check(ints_at, string.pack("<i4", -5), "particle count -5 not in [0, 200000000]", "a negative particle count")
+  check(ints_at, string.pack("<i4", 0x7fffffff), "particle count 2147483647", "a huge particle count")
+  check(ints_at + 4, string.pack("<i4", n + 1), "fluid count " .. (n + 1), "a fluid count above n")
+  check(ints_at + 4, string.pack("<i4", 50), "fluid count 50 disagrees with the 100 fluid particles",
+        "a fluid count that disagrees with the kinds")
+  check(nmats_at, string.pack("<i4", 65), "material count 65", "too many materials")
+  check(nplates_at, string.pack("<i4", -1), "plate count -1", "a negative plate count")
+  check(kind_at, string.pack("<i4", 2), "particle 1: kind 2 is neither fluid (-1) nor a plate", "a plate index out of range")
+  check(mat_at, string.pack("<i4", 7), "particle 1: material 8", "a fluid material out of range")
+  check(parts_at, string.pack("<d", 0 / 0), "particle 1: x = ", "a NaN position")
+  check(parts_at + 2 * 8 * n + 8 * 3, string.pack("<d", math.huge), "particle 4: u = inf is not finite",
+        "an infinite velocity")
+  check(parts_at + 6 * 8 * n, string.pack("<d", 0 / 0), "particle 1: p = ", "a NaN pressure")
+  check(parts_at + 7 * 8 * n, string.pack("<d", -1), "particle 1: rho = -1", "a negative density")
+  check(parts_at + 7 * 8 * n, string.pack("<d", 0 / 0), "particle 1: rho = ", "a NaN density")
+  check(clock_at, string.pack("<d", 0 / 0), "t = ", "a NaN time")
+  check(clock_at, string.pack("<d", -1), "t = -1 must be finite and >= 0", "a negative time")
+  check(clock_at + 8, string.pack("<d", math.huge), "dt = inf must be finite and >= 0", "an infinite dt")
+  check(clock_at + 8, string.pack("<d", -1e-3), "dt = -0.001", "a negative dt")
+  -- fields inside the structs, found by difference
+  local at = first_diff(base, saved(build{ axis = "x" }))
+  T.check(at and at > plates_at + PL and at < plates_at + 2 * PL, "the second plate's axis found by difference", at)
+  check(at, string.pack("<i4", 3), "plate 2: axis 3 is not -1, 0 or 1", "a plate axis out of range")
+  at = first_diff(base, saved(build{ velocity = true }))
+  check(at, string.pack("<i4", 7), "plate 2: mode 7 is not fixed", "a plate mode out of range")
+  check(plates_at + (at - plates_at - PL), string.pack("<i4", 1), "plate 1: mode 1 on a fixed plate",
+        "a fixed plate in velocity mode")
+  at = first_diff(saved(build{ mass = 3 }), saved(build{ mass = 3 + 2 ^ -51 })) -- the lowest byte: the double's start
+  check(at, string.pack("<d", 0), "plate 2: mass 0 is not a positive finite number", "a plate mass of 0")
+  check(at, string.pack("<d", 0 / 0), "plate 2: mass", "a NaN plate mass")
+  at = first_diff(base, saved(build{ mat = sph.bingham{ mu = 1, tau0 = 1, m = 10 } }))
+  T.check(at == mats_at, "the material model found by difference at the first material", at)
+  check(mats_at, string.pack("<i4", 9), "material 1: model 9 is not newtonian", "a material model out of range")
+  check(mats_at + 8, string.pack("<d", -1), "material 1: mu must be a positive number", "a material's bad mu")
+  check(29, string.pack("<d", -0.1), "parameters: dx must be a positive number", "a negative dx")
+  at = first_diff(base, saved(build{ threads = 2 }))
+  T.check(at and at > 28 and at <= 28 + P, "threads found by difference in the parameters", at)
+  check(at, string.pack("<i4", 100000), "parameters: threads = 100000: must be 1..256", "threads = 100000")
+  check(at, string.pack("<i4", -3), "parameters: threads = -3", "threads = -3")
+  local cut = base:sub(1, parts_at + 100)
+  local f = os.tmpname()
+  local g = assert(io.open(f, "wb")); g:write(cut); g:close()
+  T.checkerror("is truncated (reading the particles' doubles)", "sph.load: a file cut short", sph.load, f)
+  os.remove(f)
+  T.check(sph.load and pcall(function()
+    local f2 = os.tmpname()
+    local g2 = assert(io.open(f2, "wb")); g2:write(base); g2:close()
+    local w2 = sph.load(f2)
+    os.remove(f2)
+    w2:step()
+  end), "the undamaged file loads and steps")
+end)
+
 T.done()

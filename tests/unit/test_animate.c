@@ -173,6 +173,66 @@ static void test_errors(void) {
     remove(a), remove(b), remove(c);
 }
 
+/* the whole of a file (up to cap bytes) and its length, -1 when it cannot be read */
+static long slurp(const char *file, unsigned char *buf, size_t cap) {
+    FILE *fp = fopen(file, "rb");
+    if (!fp)
+        return -1;
+    size_t n = fread(buf, 1, cap, fp);
+    fclose(fp);
+    return (long)n;
+}
+
+/* files in the test directory (a temporary file left behind would show here) */
+static int files_in_dir(void) {
+    char cmd[512];
+    snprintf(cmd, sizeof cmd, "ls -A '%s' | wc -l", dir);
+    FILE *p = popen(cmd, "r");
+    int n = -1;
+    if (p) {
+        if (fscanf(p, "%d", &n) != 1)
+            n = -1;
+        pclose(p);
+    }
+    return n;
+}
+
+/* An output that is a frame under another name ("dir/./b.png") was truncated before it was
+   read, then removed; a failed animation removed an earlier animation at its path. */
+static void test_output_kept(void) {
+    static unsigned char before[1 << 16], after[1 << 16];
+    char a[256], b[256], b_alias[256], out[256], small[256], err[512] = "";
+    const char *frames[2] = {a, b_alias};
+    int rc, files;
+    long n0, n1;
+    tmp(a, sizeof a, "ka.png"), tmp(b, sizeof b, "kb.png"), tmp(small, sizeof small, "ksmall.png");
+    snprintf(b_alias, sizeof b_alias, "%s/./kb.png", dir);
+    write_frame(a, 64, 48, 1, 0, 0);
+    write_frame(b, 64, 48, 0, 0, 1);
+    write_frame(small, 64, 40, 0, 1, 0);
+    n0 = slurp(b, before, sizeof before);
+    rc = sph_animate_png(frames, 2, 25, 0, b, err, sizeof err);
+    n1 = slurp(b, after, sizeof after);
+    CHECK(rc == -1 && strstr(err, "also frame 2"), "an output that is a frame under another name is refused",
+          "rc %d '%s'", rc, err);
+    CHECK(n0 > 0 && n1 == n0 && !memcmp(before, after, (size_t)n0), "that frame keeps its bytes",
+          "%ld bytes before, %ld after", n0, n1);
+    tmp(out, sizeof out, "kanim.png");
+    frames[1] = b;
+    rc = sph_animate_png(frames, 2, 25, 0, out, err, sizeof err);
+    n0 = slurp(out, before, sizeof before);
+    CHECK(rc == 0 && n0 > 0, "an animation made", "'%s'", err);
+    files = files_in_dir();
+    frames[1] = small;
+    rc = sph_animate_png(frames, 2, 25, 0, out, err, sizeof err);
+    n1 = slurp(out, after, sizeof after);
+    CHECK(rc == -1 && n1 == n0 && !memcmp(before, after, (size_t)n0),
+          "a failed animation leaves the earlier one at its path as it was", "rc %d, %ld bytes before, %ld after", rc,
+          n0, n1);
+    CHECK(files_in_dir() == files, "and leaves no temporary file", "%d files, %d before", files_in_dir(), files);
+    remove(a), remove(b), remove(small), remove(out);
+}
+
 int main(void) {
     char buf[256];
     const char *names[] = {"f0.png", "f1.png", "f2.png", "anim.png"};
@@ -184,6 +244,7 @@ int main(void) {
     test_three_frames();
     test_delay();
     test_errors();
+    test_output_kept();
     for (i = 0; i < sizeof names / sizeof names[0]; i++)
         remove(tmp(buf, sizeof buf, names[i]));
     rmdir(dir);

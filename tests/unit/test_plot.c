@@ -1,5 +1,6 @@
 /* Line plots: a known straight line lands on the pixels the mapping predicts and nowhere
    else; log axes survive zeros; holes break lines; bad input and unwritable files fail. */
+#include <float.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -190,6 +191,31 @@ static void test_ticks_and_ranges(void) {
     CHECK(n == 4 && t[0] == 2000 && t[3] == 5000, "ticks in thousands", "n %d", n);
     CHECK(sph_plot_ticks(1, 1, 5, t, 32) == 0 && sph_plot_ticks(0, 1, 5, t, 2) == 2,
           "empty range gives no ticks; cap respected", "wrong count");
+    {
+        /* any finite range ends with a few increasing ticks inside it: the widest spans
+         * (hi - lo overflows), ranges far beyond 2^53 steps from 0; and a span too narrow
+         * for a normal step (below 1e-307: it used to underflow to 0 and the search spun
+         * forever) ends with none */
+        static const double r[][2] = {{-DBL_MAX, DBL_MAX}, {-1e308, 1e308}, {1e17, 1e17 + 16},
+                                      {1e300, 1.000000000000001e300}, {-1, 1e-300}, {0, 1e-290}};
+        for (size_t q = 0; q < sizeof r / sizeof r[0]; q++) {
+            n = sph_plot_ticks(r[q][0], r[q][1], 6, t, 32);
+            int ok = n >= 1 && n <= 6;
+            for (int k = 0; ok && k < n; k++)
+                ok = isfinite(t[k]) && t[k] >= r[q][0] && t[k] <= r[q][1] && (k == 0 || t[k] > t[k - 1]);
+            CHECK(ok, "ticks of a finite range end: between 1 and 6, increasing, inside it", "[%g, %g]: n %d",
+                  r[q][0], r[q][1], n);
+        }
+        static const double tiny[][2] = {{0, 5e-324}, {5e-324, 1e-323}, {-1e-310, 1e-310}, {1, 1 + 2e-16}};
+        for (size_t q = 0; q < sizeof tiny / sizeof tiny[0]; q++) {
+            n = sph_plot_ticks(tiny[q][0], tiny[q][1], 6, t, 32);
+            CHECK(n >= 0 && n <= 6, "ticks of a tiny range end, at most 6", "[%g, %g]: n %d", tiny[q][0], tiny[q][1], n);
+        }
+        CHECK(sph_plot_ticks(0, 5e-324, 6, t, 32) == 0, "a span below a normal step gives no ticks", "n %d",
+              sph_plot_ticks(0, 5e-324, 6, t, 32));
+        CHECK(sph_plot_ticks(5e-324, 5e-324, 6, t, 32) == 0, "a subnormal range of equal ends gives no ticks",
+              "n %d", sph_plot_ticks(5e-324, 5e-324, 6, t, 32));
+    }
     {
         static const double x[2] = {0.03, 0.97};
         sph_plot_spec p;

@@ -2,8 +2,10 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include "atomic.h"
 #include "sph_pictures.h"
 #include "unit.h"
 
@@ -304,6 +306,70 @@ static void test_colormap(void) {
           c[1], c[2]);
 }
 
+/* the first bytes of a file ("" when it cannot be read) */
+static const char *contents(const char *file, char *buf, size_t cap) {
+    FILE *fp = fopen(file, "rb");
+    size_t n = 0;
+    if (fp) {
+        n = fread(buf, 1, cap - 1, fp);
+        fclose(fp);
+    }
+    buf[n] = 0;
+    return buf;
+}
+
+/* The shared replace-whole helper every writer uses (src/atomic.c): an aborted write (the
+   writers' failure path) leaves the old file as it was, a committed one replaces it, a
+   rename that cannot happen (the target is a directory) fails naming it; never a
+   temporary file left behind. */
+static void test_atomic(void) {
+    char buf[64], err[512] = "", sub[512], cmd[600];
+    const char *f = tmp("atomic.txt");
+    sph_atomic_file af;
+    FILE *fp = fopen(f, "wb");
+    if (fp) {
+        fputs("old", fp);
+        fclose(fp);
+    }
+    int rc = sph_atomic_open(&af, f, err, sizeof err);
+    CHECK(rc == 0 && af.fp, "atomic: open a temporary file next to the target", "'%s'", err);
+    if (rc == 0) {
+        fputs("half a new fi", af.fp);
+        sph_atomic_abort(&af);
+    }
+    CHECK(!strcmp(contents(f, buf, sizeof buf), "old"), "atomic: an aborted write leaves the old file", "'%s'", buf);
+    rc = sph_atomic_open(&af, f, err, sizeof err);
+    if (rc == 0) {
+        fputs("new", af.fp);
+        rc = sph_atomic_commit(&af, err, sizeof err);
+    }
+    CHECK(rc == 0 && !strcmp(contents(f, buf, sizeof buf), "new"), "atomic: a committed write replaces the file",
+          "rc %d '%s' '%s'", rc, buf, err);
+    snprintf(sub, sizeof sub, "%s/adir", dir);
+    mkdir(sub, 0700);
+    rc = sph_atomic_open(&af, sub, err, sizeof err);
+    if (rc == 0) {
+        fputs("x", af.fp);
+        rc = sph_atomic_commit(&af, err, sizeof err);
+    }
+    CHECK(rc == -1 && strstr(err, "cannot replace") && strstr(err, sub), "atomic: a rename onto a directory fails, naming it",
+          "rc %d '%s'", rc, err);
+    rmdir(sub);
+    rc = sph_atomic_open(&af, "/nonexistent-sph-dir/x.png", err, sizeof err);
+    CHECK(rc == -1 && strstr(err, "cannot open '/nonexistent-sph-dir/x.png' for writing: No such file or directory"),
+          "atomic: a missing directory fails, naming the file and why", "'%s'", err);
+    snprintf(cmd, sizeof cmd, "ls -A '%s' | grep -c tmp", dir);
+    FILE *p = popen(cmd, "r");
+    int left = -1;
+    if (p) {
+        if (fscanf(p, "%d", &left) != 1)
+            left = -1;
+        pclose(p);
+    }
+    CHECK(left == 0, "atomic: no temporary file left behind", "%d", left);
+    remove(f);
+}
+
 int main(void) {
     const char *names[] = {"yield.png",    "scalar.png", "auto.png",    "mirror.png",
                            "nomirror.png", "fit.png",    "surface.png", "e.png"};
@@ -319,6 +385,7 @@ int main(void) {
     test_autofit();
     test_draw_to_surface();
     test_errors();
+    test_atomic();
     for (i = 0; i < sizeof names / sizeof names[0]; i++)
         remove(tmp(names[i]));
     rmdir(dir);
