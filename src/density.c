@@ -333,7 +333,7 @@ static int correction_solve(sph_world *w, double tol, double *f, int diff, doubl
     w->st.solver_iterations += res.iterations;
     w->st.solver_iterations_total += res.iterations;
     sph_lap(w, SPH_PHASE_PRESSURE_SOLVE);
-    sph_pressure_scatter(w, w->sol, f);
+    sph_pressure_scatter(w, w->sol, f, 0);
     /* density_gradient: the symmetric form ("auto"'s until its first passes go over to
      * the difference form, and its later passes and GMRES directions always; density_pass)
      * carries phi_i sum_j m_j grad W_ij, which does not vanish where the support is cut

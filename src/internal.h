@@ -10,6 +10,10 @@
 #define SPH_MAX_MATERIALS 64
 #define SPH_MAX_PLATES 64
 #define SPH_MAX_LOADED 4 /* plates under a load law, coupled implicitly */
+/* C_s: the free surface's stress is explicit (viscous.c, surface_pressure) and stable for
+ * dt <= C_s rho h^2 / eta (timestep.c; measured on the Newtonian square at Re = 0.05: smooth
+ * up to 3.2, a particle-scale mode of the surface row beyond) */
+#define SPH_SURFACE_CS 2.0
 
 typedef struct sph_plate {
     double rect[4];      /* current rectangle (moves with the plate)                 */
@@ -189,6 +193,7 @@ struct sph_world {
     double *ax, *ay;           /* acceleration of the last step (dt force limit)    */
     double *p, *rho, *m;       /* pressure, density, mass                           */
     double *phi;               /* density-correction potential (dt^2 p units)       */
+    double *ps;                /* this step's free-surface pressure n . tau . n      */
     double *dp;                /* scratch: the density correction's later passes    */
     double *gm;                /* the GMRES density correction's vectors (density.c)  */
     size_t gm_len;             /* doubles in gm                                      */
@@ -204,7 +209,7 @@ struct sph_world {
     int *kind, *mat, *id;      /* SPH_FLUID or plate index; material; stable id     */
     int *src;                  /* ghosts: the real particle they image; reals: self */
     signed char *gsx, *gsy;    /* ghosts: sign applied to u, v (mirror: -1)         */
-    unsigned char *surf;       /* fluid on the free surface (p = 0)                 */
+    unsigned char *surf;       /* fluid on the free surface (p = n . tau . n)       */
     unsigned char *active;     /* wall particle in the pressure system              */
     unsigned char *cellfl;     /* in cell order: the item is fluid (real or ghost)   */
     int *row;                  /* unknown index in the pressure system or -1        */
@@ -321,6 +326,22 @@ void sph_plate_contact(sph_world *w);
 
 /* physics passes (viscous.c, pressure.c) */
 void sph_viscous_rheology(sph_world *w);
+/* The traction-free free surface (viscous.c) is carried for a Newtonian fluid particle
+ * with the symmetric pressure gradient (the default); elsewhere the surface holds p = 0. */
+static inline int sph_surface_traction(const sph_world *w, int i) {
+    return w->mats[w->mat[i]].model == SPH_NEWTONIAN && w->par.pressure_gradient == SPH_GRAD_SYMMETRIC;
+}
+/* g_i = sum_j V_j grad_i W_ij over all neighbours: zero in a full, even support, -|g| n
+ * next to a free surface (the truncated support's boundary moment) */
+static inline void sph_boundary_moment(const sph_world *w, int i, double *gx, double *gy) {
+    double x = 0.0, y = 0.0;
+    for (int k = w->nb_start[i]; k < w->nb_start[i + 1]; k++) {
+        x += w->vol[w->nb_j[k]] * w->nb_gx[k];
+        y += w->vol[w->nb_j[k]] * w->nb_gy[k];
+    }
+    *gx = x;
+    *gy = y;
+}
 void sph_viscous_explicit(sph_world *w, double dt);
 int sph_viscous_implicit(sph_world *w, double dt);
 int sph_pressure_solve(sph_world *w, double dt);
@@ -329,7 +350,8 @@ void sph_pressure_predictor(sph_world *w, double *ax, double *ay);
 int sph_density_correct(sph_world *w);
 /* The pressure system's pieces the density correction (density.c) shares (pressure.c) */
 void sph_pressure_neg_grad_prepare(sph_world *w, const double *f, double *fr);
-void sph_pressure_scatter(sph_world *w, const double *sol, double *p);
+/* p from a solution per row; free-surface fluid particles take surface[i] (NULL: 0) */
+void sph_pressure_scatter(sph_world *w, const double *sol, double *p, const double *surface);
 void sph_pressure_make_compatible(sph_world *w, double pin_source);
 int sph_pressure_dense_solve(int n, double *a, int lda, double *x);
 /* sum_j m_j (u_i - u_j) . L grad W_ij for the field (ru, rv) (ghosts synced): the source's

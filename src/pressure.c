@@ -13,7 +13,8 @@
  * The divergence uses the renormalised kernel gradient L grad W (Bonet & Lok 1999), so
  * it stays first-order consistent next to a free surface.
  * Laplacian: sum_j m_j 8 / (rho_i + rho_j)^2 (p_i - p_j) F_ij. Rows: fluid particles and
- * the wall particles near fluid; free-surface particles are held at p = 0. Each row is
+ * the wall particles near fluid; free-surface particles are held at p = n . tau . n (the
+ * traction-free surface: viscous.c, surface_pressure). Each row is
  * scaled by m_i so that the matrix is symmetric positive definite; ghosts map to the
  * unknown of the particle they image.
  * Plates under a load are coupled implicitly: the pressure is linear in their velocities,
@@ -312,8 +313,8 @@ static void plate_pressure_force(const sph_world *w, const double *p, double *ou
     for (int k = 0; k < np; k++) out[k] = f[k] * (w->plates[k].doubled ? 2.0 : 1.0);
 }
 
-void sph_pressure_scatter(sph_world *w, const double *sol, double *p) {
-    for (int i = 0; i < w->n; i++) p[i] = 0.0;
+void sph_pressure_scatter(sph_world *w, const double *sol, double *p, const double *surface) {
+    for (int i = 0; i < w->n; i++) p[i] = surface && w->kind[i] == SPH_FLUID && w->surf[i] ? surface[i] : 0.0;
     for (int r = 0; r < w->nrows; r++) p[w->row_of[r]] = sol[r];
     sph_boundary_sync(w, p, 0, 0);
 }
@@ -451,7 +452,7 @@ static int projection_passes(sph_world *w, double dt, const int *loaded, int K) 
     for (int pass = 0; pass < w->par.projection_passes; pass++) {
         for (int q = -1; q < K; q++) {
             double *sol = q < 0 ? w->sol : w->solk[q], *full = q < 0 ? w->p : w->psens[q];
-            sph_pressure_scatter(w, sol, full);
+            sph_pressure_scatter(w, sol, full, q < 0 ? w->ps : 0);
             projected_velocity(w, full, dt, q < 0 ? -1 : loaded[q], w->ru, w->rv);
             double c = 1.0 / (w->par.rho0 * dt);
 #pragma omp parallel for schedule(static) num_threads(w->threads)
@@ -557,7 +558,7 @@ int sph_pressure_solve(sph_world *w, double dt) {
 #pragma omp parallel for schedule(static) num_threads(threads)
     for (int r = 0; r < nrows; r++) {
         int i = w->row_of[r], e = A->start[r] + 1;
-        double mi = w->m[i], rhoi = w->rho[i], diag = 0.0;
+        double mi = w->m[i], rhoi = w->rho[i], diag = 0.0, bsurf = 0.0;
         double sens[SPH_MAX_LOADED] = {0};
         double div = sph_field_div(w, svx, svy, i); /* the source: sum_j m_j (u*_i - u*_j) . L grad W */
         int fl = w->kind[i] == SPH_FLUID;
@@ -590,8 +591,9 @@ int sph_pressure_solve(sph_world *w, double dt) {
                 A->col[e] = w->row[s];
                 A->val[e] = -c;
                 e++;
-            } else if (w->kind[s] == SPH_FLUID) {
-                diag += c; /* Dirichlet neighbour, p = 0 */
+            } else if (w->kind[s] == SPH_FLUID) { /* Dirichlet neighbour, p = n . tau . n */
+                diag += c;
+                bsurf += c * w->ps[s];
             }
         }
         A->col[A->start[r]] = r;
@@ -601,7 +603,7 @@ int sph_pressure_solve(sph_world *w, double dt) {
         A->val[A->start[r]] = diag;
         A->diag[r] = diag;
         /* A = -Laplacian (scaled by m_i): b = -m_i s_i */
-        w->b[r] = mi * div / (rho0 * dt);
+        w->b[r] = mi * div / (rho0 * dt) + bsurf;
         for (int q = 0; q < K; q++) w->bk[q][r] = -mi * (-dt * sens[q]) / (rho0 * dt * dt);
         /* warm starts */
         double p0 = w->p[i];
@@ -655,12 +657,12 @@ int sph_pressure_solve(sph_world *w, double dt) {
         for (int q = 0; q < K; q++) p0 -= w->plates[loaded[q]].vel * w->psens[q][i];
         chg[i] = r >= 0 ? w->sol[r] - p0 : 0.0;
     }
-    sph_pressure_scatter(w, w->sol, w->p);
+    sph_pressure_scatter(w, w->sol, w->p, w->ps);
     plate_pressure_force(w, w->p, F0);
     if (K > 0) {
         double a[SPH_MAX_LOADED][SPH_MAX_LOADED], x[SPH_MAX_LOADED];
         for (int q = 0; q < K; q++) {
-            sph_pressure_scatter(w, w->solk[q], w->psens[q]);
+            sph_pressure_scatter(w, w->solk[q], w->psens[q], 0);
             plate_pressure_force(w, w->psens[q], Fk[q]);
         }
         for (int r = 0; r < K; r++) {
@@ -695,7 +697,7 @@ void sph_pressure_neg_grad_prepare(sph_world *w, const double *f, double *fr) {
 
 /* -grad p~ / rho of every fluid particle for the viscous step's pressure predictor, p~ the
  * last step's pressure at the current positions, kernel-averaged (Shepard) over fluid and
- * wall particles and held at 0 on the free surface, its gradient the renormalised
+ * wall particles and held at n . tau . n on the free surface, its gradient the renormalised
  * difference form L sum_j V_j (p~_j - p~_i) grad W_ij. The average keeps particle-scale
  * pressure modes out of the predictor: where the viscous solve is stiff (dt eta / (rho
  * dx^2) >> 1) it returns almost nothing of a particle-scale force, so what the predictor
@@ -705,8 +707,8 @@ void sph_pressure_neg_grad_prepare(sph_world *w, const double *f, double *fr) {
  * with an 18 % density error, Re = 0.01 with 5.2 % (both pass with the average: 0.80 %);
  * the squeezes of make test barely differ (Newtonian V = 1, dx = 1/20: error 0.238 in
  * 1463 steps against 0.231 in 1727). */
-/* pt = p kernel-averaged (Shepard) over fluid and active wall particles, 0 on the free
- * surface, p itself on inactive walls (p and pt synced on ghosts). */
+/* pt = p kernel-averaged (Shepard) over fluid and active wall particles, p itself on the free
+ * surface (n . tau . n) and on inactive walls (p and pt synced on ghosts). */
 static void shepard(sph_world *w, double *p, double *pt) {
     int n = w->n;
     double h = w->h, w0 = sph_kernel_value(0.0, h);
@@ -714,7 +716,7 @@ static void shepard(sph_world *w, double *p, double *pt) {
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int i = 0; i < n; i++) {
         if (!w->active[i] || (w->kind[i] == SPH_FLUID && w->surf[i])) {
-            pt[i] = w->kind[i] == SPH_FLUID ? 0.0 : p[i];
+            pt[i] = p[i]; /* free surface: its n . tau . n; inactive walls: not a pressure */
             continue;
         }
         double s = w->vol[i] * w0, sp = s * p[i];

@@ -2,6 +2,7 @@
  * Velocity gradient: grad u_i = sum_j V_j (u_j - u_i) (x) grad_i W_ij, with a wall
  * neighbour's velocity taken from the no-slip extrapolation; shear rate
  * gammadot = sqrt(1/2 D:D), D = grad u + grad u^T; apparent viscosity from the material law.
+ * The free surface is traction-free (surface_pressure, transpose_accel).
  * Viscous acceleration (Morris, Fox & Zhu 1997):
  *   (1/rho div eta grad u)_i = sum_j m_j (eta_i + eta_j) F_ij / (rho_i rho_j) (u_i - u_j),
  *   F_ij = r_ij . grad_i W_ij / (r_ij^2 + eps^2). */
@@ -9,51 +10,145 @@
 
 #include <math.h>
 
+/* grad u of the field (u, v) at fluid particle i, g = {du/dx, du/dy, dv/dx, dv/dy}: a wall
+ * neighbour's velocity from the no-slip extrapolation, renormalised (grad u = (sum V du (x)
+ * grad W) L), first-order consistent next to a free surface where the support is truncated. */
+static inline void velocity_gradient(const sph_world *w, int i, const double *u, const double *v, double g[4]) {
+    double uxx = 0, uxy = 0, uyx = 0, uyy = 0; /* uab = d u_a / d x_b */
+    double ui = u[i], vi = v[i];
+    int k0 = w->nb_start[i], km = w->nb_mid[i], k1 = w->nb_start[i + 1];
+    const int *nj = w->nb_j;
+    const double *gxk = w->nb_gx, *gyk = w->nb_gy, *vol = w->vol;
+#pragma omp simd reduction(+ : uxx, uxy, uyx, uyy)
+    for (int k = k0; k < km; k++) { /* fluid neighbours */
+        int j = nj[k];
+        double du = vol[j] * (u[j] - ui), dv = vol[j] * (v[j] - vi);
+        uxx += du * gxk[k];
+        uxy += du * gyk[k];
+        uyx += dv * gxk[k];
+        uyy += dv * gyk[k];
+    }
+    for (int k = km; k < k1; k++) { /* walls: the no-slip extrapolation */
+        int j = nj[k];
+        double wx, wy, beta = sph_plate_noslip(w, i, j);
+        sph_plate_wall_velocity(w, j, &wx, &wy);
+        double du = -vol[j] * beta * (ui - wx), dv = -vol[j] * beta * (vi - wy);
+        uxx += du * gxk[k];
+        uxy += du * gyk[k];
+        uyx += dv * gxk[k];
+        uyy += dv * gyk[k];
+    }
+    double lxx = w->lxx[i], lxy = w->lxy[i], lyy = w->lyy[i];
+    g[0] = uxx * lxx + uxy * lxy;
+    g[1] = uxx * lxy + uxy * lyy;
+    g[2] = uyx * lxx + uyy * lxy;
+    g[3] = uyx * lxy + uyy * lyy;
+}
+
+/* The stretching t . grad u . t along the free surface at particle i (the tangent t of the
+ * support's boundary moment g_i; 0 where g_i = 0). At a traction-free surface tau_nt = 0 and,
+ * incompressible, D_nn = -D_tt: n . tau . n = -2 eta e.
+ * Unlike the normal rate du_n/dn it holds nothing of the particle's own normal velocity (its
+ * weight in the renormalised gradient lies along g). */
+static inline double surface_stretching(const sph_world *w, int i, const double g[4]) {
+    double nx, ny;
+    sph_boundary_moment(w, i, &nx, &ny);
+    double nn = hypot(nx, ny);
+    if (!(nn > 0.0)) return 0.0;
+    double tx = -ny / nn, ty = nx / nn;
+    return tx * tx * g[0] + tx * ty * (g[1] + g[2]) + ty * ty * g[3];
+}
+
 void sph_viscous_rheology(sph_world *w) {
     int n = w->n;
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) continue;
-        double uxx = 0, uxy = 0, uyx = 0, uyy = 0; /* uab = d u_a / d x_b */
-        double ui = w->u[i], vi = w->v[i];
-        int k0 = w->nb_start[i], km = w->nb_mid[i], k1 = w->nb_start[i + 1];
-        const int *nj = w->nb_j;
-        const double *gxk = w->nb_gx, *gyk = w->nb_gy, *vol = w->vol, *u = w->u, *v = w->v;
-#pragma omp simd reduction(+ : uxx, uxy, uyx, uyy)
-        for (int k = k0; k < km; k++) { /* fluid neighbours */
-            int j = nj[k];
-            double du = vol[j] * (u[j] - ui), dv = vol[j] * (v[j] - vi);
-            uxx += du * gxk[k];
-            uxy += du * gyk[k];
-            uyx += dv * gxk[k];
-            uyy += dv * gyk[k];
-        }
-        for (int k = km; k < k1; k++) { /* walls: the no-slip extrapolation */
-            int j = nj[k];
-            double wx, wy, beta = sph_plate_noslip(w, i, j);
-            sph_plate_wall_velocity(w, j, &wx, &wy);
-            double du = -vol[j] * beta * (ui - wx), dv = -vol[j] * beta * (vi - wy);
-            uxx += du * gxk[k];
-            uxy += du * gyk[k];
-            uyx += dv * gxk[k];
-            uyy += dv * gyk[k];
-        }
-        /* renormalised: grad u = (sum V du (x) grad W) L, first-order consistent near a
-         * free surface where the kernel support is truncated */
-        double lxx = w->lxx[i], lxy = w->lxy[i], lyy = w->lyy[i];
-        double cxx = uxx * lxx + uxy * lxy, cxy = uxx * lxy + uxy * lyy;
-        double cyx = uyx * lxx + uyy * lxy, cyy = uyx * lxy + uyy * lyy;
-        uxx = cxx, uxy = cxy, uyx = cyx, uyy = cyy;
-        w->gux[i] = uxx;
-        w->guy[i] = uxy;
-        w->gvx[i] = uyx;
-        w->gvy[i] = uyy;
-        double dxx = 2 * uxx, dyy = 2 * uyy, dxy = uxy + uyx;
-        double g = sqrt(0.5 * (dxx * dxx + dyy * dyy + 2 * dxy * dxy));
-        w->gd[i] = g;
-        w->eta[i] = sph_rheology_eta(&w->mats[w->mat[i]], g);
+        double g[4];
+        velocity_gradient(w, i, w->u, w->v, g);
+        w->gux[i] = g[0];
+        w->guy[i] = g[1];
+        w->gvx[i] = g[2];
+        w->gvy[i] = g[3];
+        double dxx = 2 * g[0], dyy = 2 * g[3], dxy = g[1] + g[2];
+        double gd = sqrt(0.5 * (dxx * dxx + dyy * dyy + 2 * dxy * dxy));
+        w->gd[i] = gd;
+        w->eta[i] = sph_rheology_eta(&w->mats[w->mat[i]], gd);
     }
     sph_boundary_sync(w, w->eta, w->gd, 0);
+}
+
+
+/* The free surface is traction-free, sigma . n = 0 with sigma = -p I + tau (PHYSICS.md): its
+ * normal part holds a free-surface particle at p = n . tau . n = -2 mu e, e the surface
+ * stretching of (u, v) = u* before the pressure predictor's term is taken back
+ * (sph_viscous_implicit), the viscous solution under the predicted pressure. Measured on
+ * the square at Re = 0.05 started from the FE field (dx = 1/40, 40 steps): p along the side
+ * 1.73-1.76 against 1.68-1.72 in FE. Not the particle's normal rate, which holds its own
+ * velocity (its pressure then drove it: that run diverged), nor u* after the take-back (it
+ * holds + dt grad p~ / rho). Newtonian only (sph_surface_traction): a viscoplastic
+ * surface's n . tau . n is +-tau0 by the sign of e, which flipped particle to particle with
+ * the surface rows' velocity noise (Bingham square, Bn = 10 and 1000: the plate force's
+ * standard deviation 0.3-0.5 of its mean); carrying only its viscous part moved the Bingham
+ * square's force 0.52 -> 0.65 of FE but the Bn = 100 squeeze's time error 0.023 -> 0.035. */
+static void surface_pressure(sph_world *w, const double *u, const double *v) {
+    int n = w->n;
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+    for (int i = 0; i < n; i++) {
+        if (w->kind[i] != SPH_FLUID || !w->surf[i]) continue;
+        if (!sph_surface_traction(w, i)) {
+            w->ps[i] = 0.0;
+            continue;
+        }
+        double g[4];
+        velocity_gradient(w, i, u, v, g);
+        double e = surface_stretching(w, i, g);
+        w->ps[i] = -2.0 * w->mats[w->mat[i]].mu * e;
+    }
+}
+
+/* div(eta grad u^T)_i / rho_i, the part of div tau = div(eta (grad u + grad u^T)) that the
+ * Morris sum (div eta grad u) leaves out, explicit from the rheology pass's gradient (u^n),
+ * in the symmetric form sum_j V_j (T_i + T_j) . grad W_ij, T_ab = eta du_a/dx_b. Over a
+ * truncated support the symmetric pressure gradient pushes a particle out by 2 p |g| / rho
+ * (g = sum_j V_j grad W_ij) and the Morris sum pulls it in by 2 |g| eta du/dn / rho, the flux
+ * of div eta grad u (half-plane moments): the traction-free p = n . tau . n = 2 eta du_n/dn
+ * balances that pull only with this term's 2 |g| eta grad(u . n) / rho (measured on the
+ * square at Re = 0.05 from the FE field, dx = 1/40: without it the surface row ran outwards
+ * at 1.7 times the FE speed). Elsewhere it is zero for constant eta (div u = 0), so it is
+ * taken only within a support of the free surface: in the closed cavity the kernel sums'
+ * noise alone moved the error against Ghia 0.018 -> 0.022. With surface_pressure (Newtonian,
+ * the symmetric pressure gradient, whose push it balances). Walls carry T_i (the gradient
+ * continued into the plate): no boundary term there. Images: T_ab times s_a s_b. */
+static void transpose_accel(const sph_world *w, int i, double *ax, double *ay) {
+    int k0 = w->nb_start[i], km = w->nb_mid[i], k1 = w->nb_start[i + 1];
+    if (!sph_surface_traction(w, i)) {
+        *ax = *ay = 0.0;
+        return;
+    }
+    int need = w->surf[i];
+    for (int k = k0; k < km && !need; k++) need = w->surf[w->src[w->nb_j[k]]];
+    *ax = *ay = 0.0;
+    if (!need) return;
+    double ei = w->mats[w->mat[i]].mu;
+    double txx = ei * w->gux[i], txy = ei * w->guy[i], tyx = ei * w->gvx[i], tyy = ei * w->gvy[i];
+    double fx = 0.0, fy = 0.0; /* (div T)_b = d_a T_ab */
+    for (int k = k0; k < km; k++) {
+        int j = w->nb_j[k], s = w->src[j];
+        double sg = w->gsx[j] * w->gsy[j], c = w->vol[j];
+        double es = sph_surface_traction(w, s) ? w->mats[w->mat[s]].mu : 0.0;
+        double sxx = txx + es * w->gux[s], sxy = txy + sg * es * w->guy[s];
+        double syx = tyx + sg * es * w->gvx[s], syy = tyy + es * w->gvy[s];
+        fx += c * (sxx * w->nb_gx[k] + syx * w->nb_gy[k]);
+        fy += c * (sxy * w->nb_gx[k] + syy * w->nb_gy[k]);
+    }
+    for (int k = km; k < k1; k++) {
+        double c = 2.0 * w->vol[w->nb_j[k]];
+        fx += c * (txx * w->nb_gx[k] + tyx * w->nb_gy[k]);
+        fy += c * (txy * w->nb_gx[k] + tyy * w->nb_gy[k]);
+    }
+    *ax = fx / w->rho[i];
+    *ay = fy / w->rho[i];
 }
 
 /* The Morris coefficient of fluid pair k (i, j): c = m_j (eta_i + eta_j) F_ij / (rho_i rho_j),
@@ -162,11 +257,14 @@ void sph_viscous_explicit(sph_world *w, double dt) {
             au += c * du;
             av += c * dv;
         }
-        w->us[i] = ui + dt * (au + gx);
-        w->vs[i] = vi + dt * (av + gy);
+        double fx, fy;
+        transpose_accel(w, i, &fx, &fy);
+        w->us[i] = ui + dt * (au + gx + fx);
+        w->vs[i] = vi + dt * (av + gy + fy);
     }
     set_plate_viscous_forces(w, fplate);
     sph_boundary_sync(w, w->us, w->vs, 1);
+    surface_pressure(w, w->us, w->vs);
 }
 
 /* Implicit viscous step: for each velocity component,
@@ -223,6 +321,10 @@ static void visc_assemble(sph_world *w, double dt, int comp) {
             ru += beta * dt * w->xs[i];
             rv += beta * dt * w->ys[i];
         }
+        double fx, fy; /* the transpose part of div tau (explicit) */
+        transpose_accel(w, i, &fx, &fy);
+        ru += dt * fx;
+        rv += dt * fy;
         int k0 = w->nb_start[i], km = w->nb_mid[i], k1 = w->nb_start[i + 1];
         double ei = w->eta[i], dr = dt / w->rho[i];
         for (int k = k0; k < km; k++) { /* fluid: c = dt V_j (eta_i + eta_j) F_ij / rho_i */
@@ -407,6 +509,8 @@ int sph_viscous_implicit(sph_world *w, double dt) {
     w->st.visc_iterations = iters;
     w->st.visc_residual = resid;
 
+    sph_boundary_sync(w, w->us, w->vs, 1);
+    surface_pressure(w, w->us, w->vs); /* the viscous solution, before the take-back */
     /* walls keep their plate's velocity; the viscous force on each plate from u* */
     /* then the pressure predictor's term taken back: the projection applies the whole
      * -grad p^{n+1} / rho (the plates' viscous force is that of u* with it) */

@@ -150,7 +150,7 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
 #define PARTICLE_DOUBLES(w)                                                                 \
     {&w->x,   &w->y,   &w->u,   &w->v,   &w->us,  &w->vs,  &w->ax,       &w->ay,       \
      &w->p,   &w->rho, &w->m,   &w->eta, &w->gd,  &w->divr, &w->xs, &w->ys, &w->lxx,       \
-     &w->lxy, &w->lyy, &w->gux, &w->guy, &w->gvx, &w->gvy, &w->phi, &w->psens[0], &w->psens[1], \
+     &w->lxy, &w->lyy, &w->gux, &w->guy, &w->gvx, &w->gvy, &w->phi, &w->ps, &w->psens[0], &w->psens[1], \
      &w->psens[2], &w->psens[3], &w->dp, &w->vol, &w->sa, &w->sb, &w->cx, &w->cy, &w->ru, &w->rv, \
      &w->gu.d, &w->gu.d1, &w->gv.d, &w->gv.d1, &w->gp.d, &w->gp.d1}
 #define PARTICLE_INTS(w)                                                                    \

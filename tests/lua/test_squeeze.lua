@@ -103,7 +103,11 @@ T.case("Newtonian squeeze against lubrication theory", function()
   -- references are the two builds' middle: slope -5.76 +- 0.3 (lubrication: -6), ratio
   -- 0.845 +- 0.06.
   T.close(slope, -5.76, 0.3, "Newtonian squeeze: log-log slope of F against h within 0.3 of -5.76 (lubrication -6)")
-  T.close(ratio, 0.845, 0.06, "Newtonian squeeze: F(0.35) within 0.06 of 0.845 x lubrication")
+  -- With the traction-free free surface (p = n . tau . n): ratio 0.981. The reference is the
+  -- FE rectangle at a/h = 1 / (2 h^2) = 4.08, 1.033 x lubrication (REFERENCES.md section 2's
+  -- fit); the sample's barrelling and inertia (Re h = 0.35) are not in it. Measured 0.050
+  -- from it (0.182 with p = 0 at the surface); bound 0.10.
+  T.below(math.abs(ratio / 1.033 - 1), 0.10, "Newtonian squeeze: F(0.35) within 10 % of the FE rectangle's (1.033 x lubrication)")
   T.below(top.position, 0.35, "Newtonian squeeze reaches h = 0.35")
 end)
 

@@ -79,8 +79,13 @@ T.case("Newtonian squeeze at constant velocity against lubrication", function()
   -- tolerance 1e-6 / 1e-7 / 1e-8, with and without the viscous guess): 0.242-0.253 at
   -- 1/20, 0.227-0.238 at 1/30; the references are their middles (the old ones, 0.230 and
   -- 0.217, had drifted to within 0.01 of their bands' edge).
-  T.close(rs[1].error, 0.247, 0.03, "Newtonian squeeze V = 1, dx = 1/20: error within 0.03 of 0.247")
-  T.close(rs[2].error, 0.233, 0.03, "Newtonian squeeze V = 1, dx = 1/30: error within 0.03 of 0.233")
+  -- The traction-free free surface (p = n . tau . n, not 0): errors 0.1516 (1/20) and 0.1369
+  -- (1/30), the force 0.874 / 0.870 x lubrication (0.757 / 0.774 with p = 0); the window's
+  -- a/h 2.5-4.1 puts the FE rectangles 1.03-1.07 over lubrication (REFERENCES.md section 2),
+  -- what is left of the error. Bounds: the measured errors plus the round-off spread above
+  -- (0.011 at 1/20) and a margin of 0.015.
+  T.below(rs[1].error, 0.18, "Newtonian squeeze V = 1, dx = 1/20: error under 0.18")
+  T.below(rs[2].error, 0.165, "Newtonian squeeze V = 1, dx = 1/30: error under 0.165")
   T.close(order, 0.15, 0.5, "Newtonian squeeze V = 1: observed order within 0.5 of 0.15")
   T.below(rs[2].peak_density_error, 0.03, "Newtonian squeeze V = 1, dx = 1/30: peak density error under 3 %")
 end)
@@ -146,8 +151,12 @@ T.case("Newtonian squeeze under a constant load against lubrication", function()
   -- Session 7, the pressure predictor: errors 0.4790 / 0.3882 (order 0.52) with -O2,
   -- 0.4790 / 0.3881 (0.52) with -O1: the plate now closes 1.39-1.48 times faster than
   -- lubrication says (1.48-1.59 before).
-  T.close(rs[1].error, 0.479, 0.06, "Newtonian squeeze F = 20, dx = 1/20: error within 0.06 of 0.479")
-  T.close(rs[2].error, 0.388, 0.06, "Newtonian squeeze F = 20, dx = 1/30: error within 0.06 of 0.388")
+  -- The traction-free free surface: errors 0.2186 / 0.2057 (order 0.15; the plate closes
+  -- 1.21-1.22 times faster than lubrication, 1.39-1.48 with p = 0 at the surface), which
+  -- at a/h 2.5-4.1 is mostly the FE rectangles' 3-7 % over lubrication and the time error.
+  -- Bounds: the measured errors plus 0.03 (a loaded run integrates the force's noise).
+  T.below(rs[1].error, 0.25, "Newtonian squeeze F = 20, dx = 1/20: error under 0.25")
+  T.below(rs[2].error, 0.24, "Newtonian squeeze F = 20, dx = 1/30: error under 0.24")
   T.close(order, 0.52, 0.6, "Newtonian squeeze F = 20: observed order within 0.6 of 0.52")
 end)
 
