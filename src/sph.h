@@ -148,8 +148,10 @@ void sph_params_default(sph_params *p);
 /* A new empty world; NULL with a message in err on bad parameters. */
 sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen);
 void sph_world_free(sph_world *w);
-/* The state (parameters, materials, plates, clock, statistics, particles) to a file, and a
- * new world from one (state.c): a restart on the same build; 0 / NULL with a message. */
+/* The state (parameters, materials, plates, clock, statistics, particles, and the solves'
+ * first guesses and multigrid hierarchies) to a file, and a new world from one (state.c):
+ * a restart on the same build, which continues the run bit for bit on the same thread
+ * count; 0 / NULL with a message (a file of another state version is named as such). */
 int sph_world_save(sph_world *w, const char *file);
 sph_world *sph_world_load(const char *file, char *err, size_t errlen);
 const char *sph_world_error(const sph_world *w);
