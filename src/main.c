@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 int luaopen_sph(lua_State *L);
 
@@ -112,7 +113,20 @@ static int run(lua_State *L) {
     return 0;
 }
 
+/* OpenMP threads wait passively (sleep) unless the environment says otherwise: libgomp's
+ * default spins for a while at every barrier, and with a thread on every core of a busy
+ * machine the spinning threads took the cores from the work (the headline squeeze: 25-49 s
+ * instead of 1 s). libgomp reads OMP_WAIT_POLICY once, when it is loaded, before main: a
+ * setenv here alone changes nothing (measured), so the host sets it and executes itself
+ * again (Linux, /proc/self/exe; elsewhere, or if that fails, it runs on as it is). */
+static void passive_wait(char **argv) {
+    if (getenv("OMP_WAIT_POLICY")) return;
+    if (setenv("OMP_WAIT_POLICY", "passive", 1)) return;
+    execv("/proc/self/exe", argv); /* returns only on failure */
+}
+
 int main(int argc, char **argv) {
+    passive_wait(argv);
     if (argc < 2) {
         usage(stderr);
         return 2;
