@@ -16,6 +16,9 @@
 -- Speed; eased for large runs).
 -- Writes out/series.csv: t, h, plate velocity, plate force, solver iterations, max
 -- density error, and the lubrication reference (Newtonian: mu V / h^6 or h(t) under load).
+-- Exit status: 0 the run reached t_end; 1 an error (bad arguments, a gap under 3 particles
+-- across asked for, an engine error: the message says which); 2 it reached h_stop before
+-- t_end ("stopped at t = ..., h = ... <= h_stop"); 130 / 143 interrupted.
 -- frames=N (default 0): N yield-state frames evenly over the run into out/frames/f_0001.png
 -- ..., the animation out/squeeze.png (fps, default 10; frame_width, default 800) and the
 -- plots out/h.png and out/force.png (plots=1 gives the plots without frames).
@@ -43,6 +46,17 @@ local width, height = o.width or 0.5, o.height or 1
 -- default h_min (thinner, the sample would flow off the plates' ends)
 local h_min = o.h_min or math.min(0.25, 0.8 * height)
 local h_stop = o.h_stop or h_min
+-- a gap a particle or two across is no flow the method resolves (a force of 1.3e8 at
+-- h_stop = dx was reported as done): refused before the run
+local MIN_ACROSS = 3
+for _, g in ipairs{ { "height", height }, { "h_stop", h_stop }, { "h_min", h_min } } do
+  if not (g[2] >= MIN_ACROSS * dx * (1 - 1e-9)) then
+    io.stderr:write(string.format("squeeze: %s = %g is %.1f particles across (dx = %g): the gap must stay at least "
+      .. "%d particles across (%s >= %g); lower dx or raise %s\n", g[1], g[2], g[2] / dx, dx, MIN_ACROSS, g[1],
+      MIN_ACROSS * dx, g[1]))
+    os.exit(1)
+  end
+end
 local area = 2 * width * height -- the whole sample's, per unit depth
 local w, top, bottom = squeeze.build{ dx = dx, Re = Re, Bn = Bn, M = M, mode = mode, F = o.F or -10,
                               V = o.V or 1, h_min = h_min, width = width,
@@ -103,6 +117,7 @@ local function frame(w)
   frames[#frames + 1] = frame_opts.file
 end
 local ts, hs, fs, refs = {}, {}, {}, {}
+local stopped_h -- the gap at which record stopped the run (h < h_stop)
 for _, line in ipairs(old_rows) do
   local t, h, _, f = line:match("^([^,]+),([^,]+),([^,]+),([^,]+),")
   t, h = tonumber(t), tonumber(h)
@@ -139,7 +154,10 @@ local function record(w)
   series:flush()
   ts[#ts + 1], hs[#hs + 1], fs[#fs + 1], refs[#refs + 1] = w.t, h, top.force, ref(h, w.t)
   frame(w)
-  if h < h_stop then return false end
+  if h < h_stop then
+    stopped_h = h
+    return false
+  end
 end
 
 print(string.format("squeeze: mode=%s Re=%g Bn=%g M=%g dx=%g: %d fluid particles (half sample), t_end=%g",
@@ -163,7 +181,7 @@ if nframes > 0 and #frames < nframes and not sig then -- the run ended early or 
   frames[#frames + 1] = frame_opts.file
 end
 local s = w:stats()
-print(string.format((sig and "interrupted" or ok and "done" or "stopped") .. ": t=%.4g h=%.4f force=%.5g  %d steps in %.1f s (%.0f steps/s, %.2f us per particle-step)  "
+print(string.format((sig and "interrupted" or (ok and not stopped_h) and "done" or "stopped") .. ": t=%.4g h=%.4f force=%.5g  %d steps in %.1f s (%.0f steps/s, %.2f us per particle-step)  "
   .. "mean pressure iterations %.1f  max density error %.2e",
   w.t, top.position, top.force, w.steps, s.wall_time, w.steps / s.wall_time,
   1e6 * s.wall_time / (w.steps * s.particles), s.solver_iterations_total / w.steps, s.max_density_error))
@@ -214,3 +232,10 @@ if sig then
   os.exit(128 + sig)
 end
 if not ok then os.exit(1) end
+-- the run ended before t_end without an error: it reached h_stop. Said, and status 2: the
+-- series ends before the time asked for
+if stopped_h and w.t < t_end * (1 - 1e-9) then
+  print(string.format("stopped at t = %.6g, h = %.6g <= h_stop = %g, before t_end = %g (exit status 2)", w.t,
+    stopped_h, h_stop, t_end))
+  os.exit(2)
+end

@@ -56,6 +56,29 @@ T.case("headline squeeze script, the solver options reach the engine", function(
   T.check(code == 1 and text:find("dt_growth", 1, true) ~= nil, "squeeze.lua with dt_growth=slow exits 1 naming dt_growth", text)
 end)
 
+-- Early endings say why, with a status that is not 0 (issue 27 D): h_stop before t_end
+-- stops with status 2 and the gap; a gap under 3 particles across is refused (status 1).
+T.case("headline squeeze script, stopped at h_stop before t_end", function()
+  local text, code = run("mode=velocity Re=10 Bn=0.5 M=100 dx=0.05 t_end=1 h_stop=0.9")
+  T.check(code == 2, "squeeze.lua exits 2 when h_stop ends the run before t_end", text)
+  T.check(text:find("stopped at t = 0.1", 1, true) ~= nil and text:find("<= h_stop = 0.9, before t_end = 1", 1, true) ~= nil,
+          "it says where and why it stopped", text)
+  T.check(not text:find("done:", 1, true), "it does not call the run done", text)
+  T.check(lines(dir .. "/series.csv") > 2, "the series up to the stop is written", tostring(lines(dir .. "/series.csv")))
+end)
+
+T.case("headline squeeze script, a gap too thin for the particles", function()
+  local text, code = run("mode=load F=-1.3e8 Re=1 Bn=0 dx=0.05 t_end=0.01 h_stop=0.05")
+  T.check(code == 1 and text:find("h_stop = 0.05 is 1.0 particles across (dx = 0.05): the gap must stay at least 3", 1, true) ~= nil,
+          "h_stop = dx is refused with status 1 and the reason", text)
+  T.check(not text:find("done:", 1, true), "no run is reported as done", text)
+  text, code = run("mode=velocity Re=1 Bn=0 width=1.6 height=0.1 dx=0.05 t_end=0.001")
+  T.check(code == 1 and text:find("height = 0.1 is 2.0 particles across", 1, true) ~= nil,
+          "a sample 2 particles high is refused", text)
+  text, code = run("mode=velocity Re=1 Bn=0 dx=0.05 t_end=0.001 h_stop=0.15")
+  T.check(code == 0, "h_stop = 3 dx runs", text)
+end)
+
 -- SIGINT / SIGTERM (src/main.c, lsph.c): the step ends, w:run raises "interrupted", the
 -- script writes its series, plots and a state, says how to go on and exits 128 + signal;
 -- restarted from the state with the same arguments it ends as the uninterrupted run, series
