@@ -125,8 +125,18 @@ static void passive_wait(char **argv) {
     execv("/proc/self/exe", argv); /* returns only on failure */
 }
 
+/* cairo's and fontconfig's caches, for leak checkers: also when a script ends by os.exit
+ * (its status: squeeze.lua's 2, 130, 143), which skips the end of main */
+static void release_fonts(void) {
+    static int done = 0;
+    if (done) return;
+    done = 1;
+    sph_render_release_fonts();
+}
+
 int main(int argc, char **argv) {
     passive_wait(argv);
+    atexit(release_fonts);
     if (argc < 2) {
         usage(stderr);
         return 2;
@@ -154,7 +164,7 @@ int main(int argc, char **argv) {
     int sig = sph_lua_interrupt;
     if (sig && rc == LUA_OK) fprintf(stderr, "sph: interrupted (%s)\n", sph_lua_signal_name(sig));
     lua_close(L);
-    sph_render_release_fonts(); /* cairo's and fontconfig's caches, for leak checkers */
+    release_fonts();
     if (sig) return 128 + sig;
     return rc == LUA_OK ? 0 : 1;
 }
