@@ -16,9 +16,17 @@
 -- Speed; eased for large runs).
 -- Writes out/series.csv: t, h, plate velocity, plate force, solver iterations, max
 -- density error, and the lubrication reference (Newtonian: mu V / h^6 or h(t) under load).
+-- Exit status: 0 the run reached t_end; 1 an error (bad arguments, a gap under 3 particles
+-- across asked for, an engine error: the message says which); 2 it reached h_stop before
+-- t_end ("stopped at t = ..., h = ... <= h_stop"); 130 / 143 interrupted.
 -- frames=N (default 0): N yield-state frames evenly over the run into out/frames/f_0001.png
 -- ..., the animation out/squeeze.png (fps, default 10; frame_width, default 800) and the
 -- plots out/h.png and out/force.png (plots=1 gives the plots without frames).
+-- SIGINT / SIGTERM (Ctrl-C, kill) end the run after the current step: the series, the
+-- frames so far, the plots and the animation are written, the state goes to
+-- out/state.bin, and the script says how to continue (the same arguments and
+-- restart=out/state.bin: sph.load of the state, the series and frames picked up); it exits
+-- 130 (SIGINT) or 143 (SIGTERM). A second signal kills at once.
 local sph = require "sph"
 local squeeze = require "sph.squeeze"
 local o = ... or {}
@@ -38,14 +46,48 @@ local width, height = o.width or 0.5, o.height or 1
 -- default h_min (thinner, the sample would flow off the plates' ends)
 local h_min = o.h_min or math.min(0.25, 0.8 * height)
 local h_stop = o.h_stop or h_min
+-- a gap a particle or two across is no flow the method resolves (a force of 1.3e8 at
+-- h_stop = dx was reported as done): refused before the run
+local MIN_ACROSS = 3
+for _, g in ipairs{ { "height", height }, { "h_stop", h_stop }, { "h_min", h_min } } do
+  if not (g[2] >= MIN_ACROSS * dx * (1 - 1e-9)) then
+    io.stderr:write(string.format("squeeze: %s = %g is %.1f particles across (dx = %g): the gap must stay at least "
+      .. "%d particles across (%s >= %g); lower dx or raise %s\n", g[1], g[2], g[2] / dx, dx, MIN_ACROSS, g[1],
+      MIN_ACROSS * dx, g[1]))
+    os.exit(1)
+  end
+end
 local area = 2 * width * height -- the whole sample's, per unit depth
 local w, top, bottom = squeeze.build{ dx = dx, Re = Re, Bn = Bn, M = M, mode = mode, F = o.F or -10,
                               V = o.V or 1, h_min = h_min, width = width,
                               height = height, world = world_opts }
+-- restart=FILE: the run saved there (an interrupted one) goes on; the other arguments must
+-- be the saved run's (they give the outputs, the references and the end)
+local restart = o.restart
+local view_rects = { bottom.rect, top.rect } -- the frames' view: the plates as built
+if restart then
+  w:close()
+  w = sph.load(restart)
+  bottom, top = w:plate(1), w:plate(2)
+end
 
 os.execute("mkdir -p '" .. out .. "'")
+-- a restart keeps the series' rows up to the state's time (their plot data too)
+local old_rows = {}
+if restart then
+  local f = io.open(out .. "/series.csv")
+  if f then
+    f:read("l")
+    for line in f:lines() do
+      local t = tonumber(line:match("^([^,]+),"))
+      if t and t <= w.t * (1 + 1e-12) then old_rows[#old_rows + 1] = line end
+    end
+    f:close()
+  end
+end
 local series = assert(io.open(out .. "/series.csv", "w"))
 series:write("t,h,velocity,force,solver_iterations,max_density_error,reference\n")
+for _, line in ipairs(old_rows) do series:write(line, "\n") end
 local function ref(h, t)
   if Bn > 0 then return 0 / 0 end
   if mode == "velocity" then return squeeze.newtonian_force(h, o.V or 1) * area ^ 3 end
@@ -58,7 +100,7 @@ local frames = {}
 local frame_opts
 if nframes > 0 then
   os.execute("mkdir -p '" .. out .. "/frames'")
-  local b, t = bottom.rect, top.rect -- a fixed view: the plates' width, the initial gap
+  local b, t = view_rects[1], view_rects[2] -- a fixed view: the plates' width, the initial gap
   local pad = 0.02 * (t[4] - b[2])
   local view = { b[1], b[2] - pad, b[3], t[4] + pad }
   local fw = math.floor(o.frame_width or 800)
@@ -75,6 +117,26 @@ local function frame(w)
   frames[#frames + 1] = frame_opts.file
 end
 local ts, hs, fs, refs = {}, {}, {}, {}
+local stopped_h -- the gap at which record stopped the run (h < h_stop)
+for _, line in ipairs(old_rows) do
+  local t, h, _, f = line:match("^([^,]+),([^,]+),([^,]+),([^,]+),")
+  t, h = tonumber(t), tonumber(h)
+  ts[#ts + 1], hs[#hs + 1], fs[#fs + 1], refs[#refs + 1] = t, h, tonumber(f), ref(h, t)
+end
+-- and the frames made before the interrupt (f_0001.png ... in order, none past the state)
+if restart and nframes > 0 then
+  while #frames < nframes do
+    local file = string.format("%s/frames/f_%04d.png", out, #frames + 1)
+    local tk = nframes > 1 and t_end * #frames / (nframes - 1) or 0
+    local f = io.open(file, "rb")
+    if not f or tk > w.t + 1e-9 * t_end then
+      if f then f:close() end
+      break
+    end
+    f:close()
+    frames[#frames + 1] = file
+  end
+end
 -- a film a few particles thick is where the defaults fail (README, Thin films): say so once
 local thin_noted = o.pressure_gradient == "difference"
 local thin_options = mode == "velocity" and "pressure_gradient=difference"
@@ -92,25 +154,34 @@ local function record(w)
   series:flush()
   ts[#ts + 1], hs[#hs + 1], fs[#fs + 1], refs[#refs + 1] = w.t, h, top.force, ref(h, w.t)
   frame(w)
-  if h < h_stop then return false end
+  if h < h_stop then
+    stopped_h = h
+    return false
+  end
 end
 
 print(string.format("squeeze: mode=%s Re=%g Bn=%g M=%g dx=%g: %d fluid particles (half sample), t_end=%g",
   mode, Re, Bn, M, dx, w:stats().fluid, t_end))
-record(w)
+if restart then
+  -- the outputs on the first run's grid (t0 = 0): the steps are that run's, bit for bit
+  print(string.format("restart: %s at t=%.6g, step %d", restart, w.t, w.steps))
+else
+  record(w)
+end
 -- an engine error (a particle through a plate, a NaN, a collapsed time step) ends the run
 -- with its message; what was computed up to then is still written (series, frames, plots)
-local ok, run_err = pcall(w.run, w, { until_t = t_end, every = every, each = record })
+local ok, run_err = pcall(w.run, w, { until_t = t_end, every = every, each = record, t0 = 0 })
 series:close()
+local sig, signame = sph.interrupted()
 if not ok then io.stderr:write("squeeze: the run stopped early: " .. tostring(run_err) .. "\n") end
-if nframes > 0 and #frames < nframes then -- the run ended early or between outputs: show its end
+if nframes > 0 and #frames < nframes and not sig then -- the run ended early or between outputs: show its end
   nframes = #frames + 1
   frame_opts.file = string.format("%s/frames/f_%04d.png", out, #frames + 1)
   assert(w:render(frame_opts))
   frames[#frames + 1] = frame_opts.file
 end
 local s = w:stats()
-print(string.format("done: t=%.4g h=%.4f force=%.5g  %d steps in %.1f s (%.0f steps/s, %.2f us per particle-step)  "
+print(string.format((sig and "interrupted" or (ok and not stopped_h) and "done" or "stopped") .. ": t=%.4g h=%.4f force=%.5g  %d steps in %.1f s (%.0f steps/s, %.2f us per particle-step)  "
   .. "mean pressure iterations %.1f  max density error %.2e",
   w.t, top.position, top.force, w.steps, s.wall_time, w.steps / s.wall_time,
   1e6 * s.wall_time / (w.steps * s.particles), s.solver_iterations_total / w.steps, s.max_density_error))
@@ -141,4 +212,30 @@ if (o.plots or (nframes > 0 and 1 or 0)) ~= 0 then
   assert(sph.plot{ file = out .. "/force.png", xlabel = "t", ylabel = "plate force", title = title, series = fser })
   print("wrote " .. out .. "/h.png and " .. out .. "/force.png")
 end
+if sig then
+  -- the state at the interrupted step, to go on from (the step ended before the error)
+  local state = out .. "/state.bin"
+  local saved, why = pcall(w.save, w, state)
+  if saved then
+    local args = {}
+    for i = 1, #arg do
+      if not arg[i]:match("^restart=") then args[#args + 1] = arg[i] end
+    end
+    args[#args + 1] = "restart=" .. state
+    print(string.format("interrupted (%s) at t=%.6g, step %d: wrote %s\n"
+      .. "continue with the same arguments and restart=%s:\n  %s %s %s\n"
+      .. "(or in Lua: local w = sph.load(\"%s\"))", signame, w.t, w.steps, state, state, arg[-1] or "sph",
+      arg[0] or "scripts/squeeze.lua", table.concat(args, " "), state))
+  else
+    io.stderr:write("squeeze: interrupted, and the state could not be saved: " .. tostring(why) .. "\n")
+  end
+  os.exit(128 + sig)
+end
 if not ok then os.exit(1) end
+-- the run ended before t_end without an error: it reached h_stop. Said, and status 2: the
+-- series ends before the time asked for
+if stopped_h and w.t < t_end * (1 - 1e-9) then
+  print(string.format("stopped at t = %.6g, h = %.6g <= h_stop = %g, before t_end = %g (exit status 2)", w.t,
+    stopped_h, h_stop, t_end))
+  os.exit(2)
+end

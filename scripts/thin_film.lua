@@ -2,7 +2,7 @@
 -- symmetry plane) run into a thin film, the plate force against lubrication theory
 -- (F = mu V / h^6 for the whole sample of area 1) as a function of a / h = 1 / (2 h^2),
 -- with the defaults and with density_diffusion. Each run goes to h = h_stop or until the
--- engine stops it (the message is printed). Writes OUT/thin_film.csv (run, h, a/h, F h^6,
+-- engine stops it (the message is printed; exit status 1 then). h_stop under 3 dx is refused. Writes OUT/thin_film.csv (run, h, a/h, F h^6,
 -- max density error) and OUT/thin_film.png.
 --   build/sph scripts/thin_film.lua [dx=0.025] [kappa=0,0.05] [h_stop=0.15] [out=out/bench]
 --                                   [threads=1] [predictor=beta] [dc=passes|gmres] [pg=symmetric|difference]
@@ -10,6 +10,12 @@ local sph = require "sph"
 local squeeze = require "sph.squeeze"
 local o = ... or {}
 local dx, h_stop, outdir = o.dx or 1 / 40, o.h_stop or 0.15, o.out or "out/bench"
+if not (h_stop >= 3 * dx * (1 - 1e-9)) then -- a film a particle or two across resolves no flow
+  io.stderr:write(string.format("thin_film: h_stop = %g is %.1f particles across (dx = %g): at least 3 "
+    .. "(h_stop >= %g); lower dx or raise h_stop\n", h_stop, h_stop / dx, dx, 3 * dx))
+  os.exit(1)
+end
+local stopped = 0 -- runs the engine stopped before h_stop (status 1 at the end)
 local kappas = {}
 for k in tostring(o.kappa or "0,0.05"):gmatch("[%d%.]+") do kappas[#kappas + 1] = tonumber(k) end
 os.execute("mkdir -p '" .. outdir .. "'")
@@ -37,10 +43,18 @@ for _, kappa in ipairs(kappas) do
   local s = w:stats()
   print(string.format("density_diffusion = %g: %s at h = %.4f after %d steps (%.1f s), peak density error %.4f",
                       kappa, ok and "reached" or "stopped", top.position, w.steps, s.wall_time, s.peak_density_error))
-  if not ok then print("  " .. tostring(err)) end
+  if not ok then
+    print("  " .. tostring(err))
+    stopped = stopped + 1
+  end
   series[#series + 1] = { x = xs, y = ys, label = string.format("density_diffusion = %g", kappa), style = "both" }
 end
 csv:close()
 assert(sph.plot{ file = outdir .. "/thin_film.png", xlabel = "a / h", ylabel = "F h^6 / (mu V)  (lubrication: 1)",
                  series = series, title = string.format("Newtonian squeeze into a thin film, dx = %g", dx) })
 print("wrote " .. outdir .. "/thin_film.csv and thin_film.png")
+if stopped > 0 then
+  io.stderr:write(string.format("thin_film: %d of %d runs stopped before h = %g (exit status 1)\n", stopped, #kappas,
+    h_stop))
+  os.exit(1)
+end

@@ -46,6 +46,8 @@
 
 #include <math.h>
 #include <omp.h>
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -404,6 +406,31 @@ int sph_amg_second(sph_amg *g, const sph_csr *a2, int threads) {
     return sph_smoother_second(S, a2, threads);
 }
 
+/* The coarsest level l's dense Cholesky factor when it is small enough (see setup_impl),
+ * else none (Gauss-Seidel sweeps); -1 out of memory or not positive definite. */
+static int coarse_factor(sph_amg *g, int l, int coarse_max) {
+    const sph_csr *c = &g->lev[l].A;
+    g->chol_n = 0;
+    if (c->n > 0 && (c->n <= coarse_max || (l > 0 && c->n <= 4 * coarse_max))) {
+        int n = c->n;
+        if ((long)n * n > g->chol_cap) {
+            double *q = realloc(g->chol, sizeof(double) * (size_t)n * (size_t)n);
+            if (!q) return -1;
+            g->chol = q;
+            g->chol_cap = (long)n * n;
+        }
+        memset(g->chol, 0, sizeof(double) * (size_t)n * (size_t)n);
+        for (int i = 0; i < n; i++)
+            for (int k = c->start[i]; k < c->start[i + 1]; k++) g->chol[(size_t)i * n + c->col[k]] += c->val[k];
+        if (cholesky(g->chol, n)) {
+            g->chol_n = 0;
+            return -1;
+        }
+        g->chol_n = n;
+    }
+    return 0;
+}
+
 static int setup_impl(sph_amg *g, const sph_csr *a, const sph_csr *a2, int threads) {
     double theta = g->theta > 0 ? g->theta : 0.08;
     int coarse_max = g->coarse_max > 0 ? g->coarse_max : 100;
@@ -437,25 +464,9 @@ static int setup_impl(sph_amg *g, const sph_csr *a, const sph_csr *a2, int threa
      * factored densely at every setup, n^3 / 3 flops; measured, Taylor-Green at dx = 1/20
      * (400 particles) 13.9 s -> 3.7 s back to back, the Poiseuille start-up at 1/40 (460)
      * 9.1 -> 2.4 s in the validation bench (3,965 ns per particle-step, as one size up). */
-    const sph_csr *c = &g->lev[l].A;
-    g->chol_n = 0;
-    if (c->n > 0 && (c->n <= coarse_max || (l > 0 && c->n <= 4 * coarse_max))) {
-        int n = c->n;
-        if ((long)n * n > g->chol_cap) {
-            double *q = realloc(g->chol, sizeof(double) * (size_t)n * (size_t)n);
-            if (!q) return -1;
-            g->chol = q;
-            g->chol_cap = (long)n * n;
-        }
-        memset(g->chol, 0, sizeof(double) * (size_t)n * (size_t)n);
-        for (int i = 0; i < n; i++)
-            for (int k = c->start[i]; k < c->start[i + 1]; k++) g->chol[(size_t)i * n + c->col[k]] += c->val[k];
-        if (cholesky(g->chol, n)) {
-            g->chol_n = 0;
-            g->levels = 0;
-            return -1;
-        }
-        g->chol_n = n;
+    if (coarse_factor(g, l, coarse_max)) {
+        g->levels = 0;
+        return -1;
     }
     return 0;
 }
@@ -805,4 +816,139 @@ void sph_amg_free(sph_amg *g) {
     g->icap = 0;
     g->sjcap = 0;
     g->levels = 0;
+}
+
+/* Saving a hierarchy with a world's state (state.c): what the cycle and the next reuse
+ * read. The levels' sizes, each prolongation P (the finest level's too: its rows follow
+ * the particles by id), the coarse operators (with their smoothers' diagonals), the ids of
+ * the fine rows and the reuse counters. Rebuilt on reading: the restrictions R = P^T, the
+ * coarse smoothers' copies (for `threads`, as at the setup) and the coarsest factor, the
+ * same bit for bit; the finest smoother's copy is made by the next setup or reuse, which
+ * always rebuilds it. A hierarchy of fewer than two levels is saved as none: the next
+ * setup builds afresh either way. */
+static int write_csr(const sph_csr *a, int n, int with_diag, FILE *f) {
+    int nnz = a->start[n];
+    int ok = fwrite(&nnz, sizeof nnz, 1, f) == 1 && fwrite(a->start, sizeof(int), (size_t)n + 1, f) == (size_t)n + 1 &&
+             fwrite(a->col, sizeof(int), (size_t)nnz, f) == (size_t)nnz &&
+             fwrite(a->val, sizeof(double), (size_t)nnz, f) == (size_t)nnz;
+    if (ok && with_diag) ok = fwrite(a->diag, sizeof(double), (size_t)n, f) == (size_t)n;
+    return ok ? 0 : -1;
+}
+
+int sph_amg_write(const sph_amg *g, FILE *f) {
+    int levels = g->levels >= 2 ? g->levels : 0;
+    int hd[6] = {levels, levels ? g->fine_n : 0, g->age, g->it_fresh, g->it_recent, levels && g->rid ? 1 : 0};
+    if (fwrite(hd, sizeof hd, 1, f) != 1 || fwrite(&g->nnz_total, sizeof g->nnz_total, 1, f) != 1) return -1;
+    if (!levels) return 0;
+    int sizes[SPH_AMG_MAX_LEVELS];
+    sizes[0] = g->fine_n;
+    for (int l = 1; l < levels; l++) sizes[l] = g->lev[l].A.n;
+    if (fwrite(sizes, sizeof(int), (size_t)levels, f) != (size_t)levels) return -1;
+    for (int l = 0; l + 1 < levels; l++)
+        if (write_csr(&g->lev[l].P, sizes[l], 0, f)) return -1;
+    for (int l = 1; l < levels; l++)
+        if (write_csr(&g->lev[l].A, sizes[l], 1, f)) return -1;
+    if (hd[5] && fwrite(g->rid, sizeof(int), (size_t)g->fine_n, f) != (size_t)g->fine_n) return -1;
+    return 0;
+}
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+static int amg_bad(char *why, size_t len, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(why, len, fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+/* an n x m CSR as write_csr wrote it, checked (structure, columns, finite values); 1: the
+ * file ended */
+static int read_csr(sph_csr *a, int n, int m, int with_diag, FILE *f, const char *what, char *why, size_t len) {
+    int nnz;
+    if (fread(&nnz, sizeof nnz, 1, f) != 1) return 1;
+    if (nnz < 0 || (m > 0 && (double)nnz > (double)n * m) || (m == 0 && nnz != 0))
+        return amg_bad(why, len, "%s: %d entries for %d x %d", what, nnz, n, m);
+    if (sph_csr_reserve(a, n, nnz > 0 ? nnz : 1)) return amg_bad(why, len, "%s: out of memory", what);
+    if (fread(a->start, sizeof(int), (size_t)n + 1, f) != (size_t)n + 1 ||
+        fread(a->col, sizeof(int), (size_t)nnz, f) != (size_t)nnz ||
+        fread(a->val, sizeof(double), (size_t)nnz, f) != (size_t)nnz)
+        return 1;
+    if (with_diag && fread(a->diag, sizeof(double), (size_t)n, f) != (size_t)n) return 1;
+    if (!with_diag)
+        for (int i = 0; i < n; i++) a->diag[i] = 0.0;
+    if (a->start[0] != 0 || a->start[n] != nnz) return amg_bad(why, len, "%s: row starts do not span %d entries", what, nnz);
+    for (int i = 0; i < n; i++) {
+        if (a->start[i + 1] < a->start[i]) return amg_bad(why, len, "%s: row %d starts before row %d", what, i + 2, i + 1);
+        if (with_diag && !isfinite(a->diag[i])) return amg_bad(why, len, "%s: diagonal %d is not finite", what, i + 1);
+    }
+    for (int k = 0; k < nnz; k++) {
+        if (a->col[k] < 0 || a->col[k] >= m) return amg_bad(why, len, "%s: column %d not in [0, %d)", what, a->col[k], m);
+        if (!isfinite(a->val[k])) return amg_bad(why, len, "%s: value %d is not finite", what, k + 1);
+    }
+    return 0;
+}
+
+int sph_amg_read(sph_amg *g, FILE *f, int next_id, int threads, char *why, size_t len) {
+    int hd[6];
+    long nnz_total;
+    g->levels = 0;
+    if (fread(hd, sizeof hd, 1, f) != 1 || fread(&nnz_total, sizeof nnz_total, 1, f) != 1) return 1;
+    int levels = hd[0], fine_n = hd[1];
+    if (!(levels == 0 || (levels >= 2 && levels <= SPH_AMG_MAX_LEVELS)))
+        return amg_bad(why, len, "%d levels", levels);
+    if (hd[2] < 0 || hd[3] < -1 || hd[4] < 0 || (hd[5] != 0 && hd[5] != 1))
+        return amg_bad(why, len, "reuse counters {%d, %d, %d, %d} out of range", hd[2], hd[3], hd[4], hd[5]);
+    g->age = hd[2];
+    g->it_fresh = hd[3];
+    g->it_recent = hd[4];
+    g->nnz_total = nnz_total;
+    g->fine_n = fine_n;
+    if (!levels) return 0;
+    int sizes[SPH_AMG_MAX_LEVELS];
+    if (fread(sizes, sizeof(int), (size_t)levels, f) != (size_t)levels) return 1;
+    if (fine_n < 1 || fine_n > SPH_MAX_PARTICLES || sizes[0] != fine_n)
+        return amg_bad(why, len, "%d fine rows", fine_n);
+    for (int l = 1; l < levels; l++)
+        if (sizes[l] < 1 || sizes[l] > sizes[l - 1]) return amg_bad(why, len, "level %d: %d rows", l + 1, sizes[l]);
+    char what[64];
+    int rc;
+    for (int l = 0; l + 1 < levels; l++) {
+        snprintf(what, sizeof what, "level %d's prolongation", l + 1);
+        g->lev[l].P.n = 0;
+        if ((rc = read_csr(&g->lev[l].P, sizes[l], sizes[l + 1], 0, f, what, why, len))) return rc;
+    }
+    for (int l = 1; l < levels; l++) {
+        snprintf(what, sizeof what, "level %d's operator", l + 1);
+        if ((rc = read_csr(&g->lev[l].A, sizes[l], sizes[l], 1, f, what, why, len))) return rc;
+    }
+    if (hd[5]) {
+        if (fine_n > g->ridcap) {
+            int cap = fine_n + fine_n / 4 + 16;
+            if (sph_grow((void **)&g->rid, sizeof(int), cap)) return amg_bad(why, len, "out of memory");
+            g->ridcap = cap;
+        }
+        if (fread(g->rid, sizeof(int), (size_t)fine_n, f) != (size_t)fine_n) return 1;
+        for (int r = 0; r < fine_n; r++)
+            if (g->rid[r] < 0 || g->rid[r] >= next_id)
+                return amg_bad(why, len, "fine row %d: id %d not in [0, %d)", r + 1, g->rid[r], next_id);
+    } else {
+        free(g->rid);
+        g->rid = 0;
+        g->ridcap = 0;
+    }
+    int coarse_max = g->coarse_max > 0 ? g->coarse_max : 100;
+    for (int l = 0; l < levels; l++)
+        if (grow_vectors(&g->lev[l], sizes[l])) return amg_bad(why, len, "out of memory");
+    for (int l = 0; l + 1 < levels; l++)
+        if (grow_ints(g, sizes[l]) || transpose(&g->lev[l].P, sizes[l + 1], &g->lev[l].R, g->mark))
+            return amg_bad(why, len, "out of memory");
+    for (int l = 1; l + 1 < levels; l++)
+        if (sph_smoother_build(&g->lev[l].S, &g->lev[l].A, 0, threads)) return amg_bad(why, len, "out of memory");
+    g->lev[0].S.n = 0; /* made by the next setup or reuse */
+    if (coarse_factor(g, levels - 1, coarse_max))
+        return amg_bad(why, len, "the coarsest operator (%d rows) is not positive definite", sizes[levels - 1]);
+    g->levels = levels;
+    return 0;
 }

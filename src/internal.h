@@ -5,6 +5,7 @@
 #include "sph.h"
 
 #include <stdint.h>
+#include <stdio.h>
 
 #define SPH_FLUID (-1) /* kind[] of a fluid particle; walls hold their plate index */
 #define SPH_MAX_MATERIALS 64
@@ -510,5 +511,10 @@ void sph_amg_swap_scratch(sph_amg *a, sph_amg *b);
 /* The finest level's smoother takes a's values (same structure as at the setup). */
 int sph_amg_refresh(sph_amg *g, const sph_csr *a, int threads);
 void sph_amg_free(sph_amg *g);
+/* The hierarchy with a world's state (state.c; amg.c, "Saving a hierarchy"): write, -1 on
+ * a write error; read into a freed or fresh g, rebuilding what is derived (for threads),
+ * ids checked below next_id: 0, 1 when the file ended, -1 damaged (why says how). */
+int sph_amg_write(const sph_amg *g, FILE *f);
+int sph_amg_read(sph_amg *g, FILE *f, int next_id, int threads, char *why, size_t len);
 
 #endif

@@ -55,6 +55,40 @@ sph_world *sph_lua_checkworld(lua_State *L, int idx) { return check_world(L, idx
 
 static int engine_error(lua_State *L, sph_world *w) { return luaL_error(L, "%s", sph_world_error(w)); }
 
+volatile sig_atomic_t sph_lua_interrupt = 0;
+
+const char *sph_lua_signal_name(int sig) {
+    static char buf[32];
+    if (sig == SIGINT) return "SIGINT";
+    if (sig == SIGTERM) return "SIGTERM";
+    snprintf(buf, sizeof buf, "signal %d", sig);
+    return buf;
+}
+
+/* After a step: an interrupt the host caught ends w:step / w:run with a Lua error, the
+ * step that was running completed (the world is consistent: save it, write its outputs). */
+static void check_interrupt(lua_State *L, sph_world *w) {
+    int sig = sph_lua_interrupt;
+    if (sig) {
+        char msg[128];
+        snprintf(msg, sizeof msg, "interrupted (%s) at t = %.10g, step %ld", sph_lua_signal_name(sig),
+                 sph_world_time(w), sph_world_steps(w));
+        luaL_error(L, "%s", msg);
+    }
+}
+
+/* sph.interrupted(): nil, or the signal's number and name ("SIGINT") */
+static int l_interrupted(lua_State *L) {
+    int sig = sph_lua_interrupt;
+    if (!sig) {
+        lua_pushnil(L);
+        return 1;
+    }
+    lua_pushinteger(L, sig);
+    lua_pushstring(L, sph_lua_signal_name(sig));
+    return 2;
+}
+
 /* ---- materials ------------------------------------------------------------------ */
 
 static int new_material(lua_State *L, sph_model model, const char *fname) {
@@ -453,6 +487,7 @@ static int w_step(lua_State *L) {
     double dt = luaL_optnumber(L, 2, 0);
     sph_world *w = apply_laws(L, 1, sph_world_time(lw->w), "w:step (in a plate law)");
     if (sph_world_step(w, dt) < 0) return engine_error(L, w);
+    check_interrupt(L, w);
     lua_pushvalue(L, 1);
     return 1;
 }
@@ -470,7 +505,7 @@ static void progress(sph_world *w, double t_end, double wall0, int final) {
 
 static int w_run(lua_State *L) {
     lworld *lw = check_world(L, 1);
-    static const char *const keys[] = {"until_t", "every", "each", "progress", "dt", 0};
+    static const char *const keys[] = {"until_t", "every", "each", "progress", "dt", "t0", 0};
     luaL_checktype(L, 2, LUA_TTABLE);
     sph_lua_opt_only(L, 2, "run", keys);
     if (!sph_lua_opt_present(L, 2, "until_t")) luaL_error(L, "bad argument to 'run' (until_t: number expected, got no value)");
@@ -491,10 +526,20 @@ static int w_run(lua_State *L) {
     if (lua_getfield(L, 2, "progress") != LUA_TNIL) show = show && lua_toboolean(L, -1);
     lua_pop(L, 1);
     sph_world *w = lw->w;
-    double t0 = sph_world_time(w), wall0 = omp_get_wtime(), last = wall0;
+    /* t0: the output grid's origin (default now); a run continued from a saved state passes
+     * the first run's, so the outputs fall, and the steps land, where they did in it */
+    double t0 = sph_lua_opt_number(L, 2, "run", "t0", sph_world_time(w)), wall0 = omp_get_wtime(), last = wall0;
+    if (!isfinite(t0)) luaL_error(L, "bad argument to 'run' (t0: finite number expected)");
     double eps = 1e-9 * (until_t > 0 ? until_t : 1);
     long k = 1;
-    double next_out = every > 0 ? t0 + every : INFINITY;
+    if (every > 0 && sph_lua_opt_present(L, 2, "t0")) { /* the output a run from t0 would take next */
+        double now = sph_world_time(w), kk = floor((now + eps - t0) / every);
+        if (!(kk < 1e15)) luaL_error(L, "bad argument to 'run' (t0: %g outputs before now)", kk);
+        k = kk < 1 ? 1 : (long)kk;
+        while (k > 1 && t0 + (k - 1) * every > now + eps) k--;
+        while (t0 + k * every <= now + eps) k++;
+    }
+    double next_out = every > 0 ? t0 + k * every : INFINITY;
     while (sph_world_time(w) < until_t - eps) {
         double now = sph_world_time(w);
         w = apply_laws(L, 1, now, "w:run (in a plate law)");
@@ -528,6 +573,10 @@ static int w_run(lua_State *L) {
         if (show && omp_get_wtime() - last > 0.25) {
             progress(w, until_t, wall0, 0);
             last = omp_get_wtime();
+        }
+        if (sph_lua_interrupt) { /* after the step's output, if it was an output time */
+            if (show) progress(w, until_t, wall0, 1);
+            check_interrupt(L, w);
         }
     }
     if (show) progress(w, until_t, wall0, 1);
@@ -839,6 +888,7 @@ static const luaL_Reg funcs[] = {{"world", l_world},
                                  {"newtonian", l_newtonian},
                                  {"bingham", l_bingham},
                                  {"herschel_bulkley", l_hb},
+                                 {"interrupted", l_interrupted},
                                  {0, 0}};
 
 int luaopen_sph(lua_State *L);

@@ -3,6 +3,7 @@
 #define SPH_LSPH_H
 
 #include <lua.h>
+#include <signal.h>
 
 #include "sph.h"
 
@@ -21,5 +22,13 @@ void sph_lua_opt_only(lua_State *L, int idx, const char *fname, const char *cons
 /* Numeric field key of the table at idx, or def when absent. */
 double sph_lua_opt_number(lua_State *L, int idx, const char *fname, const char *key, double def);
 int sph_lua_opt_present(lua_State *L, int idx, const char *key);
+
+/* Interrupts (the sph host, main.c): the number of the signal (SIGINT, SIGTERM) that asked
+ * the run to stop, set by the host's handler, 0 while none came. w:step and w:run check it
+ * after each step and raise "interrupted (SIGINT) at t = ..., step ..."; it stays set, so
+ * every later step raises too, and sph.interrupted() returns it (and its name). */
+extern volatile sig_atomic_t sph_lua_interrupt;
+/* "SIGINT", "SIGTERM" or "signal N" */
+const char *sph_lua_signal_name(int sig);
 
 #endif

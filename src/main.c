@@ -1,17 +1,49 @@
 /* The sph host: runs a Lua case script with the sph module preloaded.
  *   sph CASE.lua [name=value ...]
  * name=value pairs reach the script as a table (numbers as numbers), both as the
- * chunk's argument (local opt = ...) and as the global `params`; `arg` is as in lua.c. */
+ * chunk's argument (local opt = ...) and as the global `params`; `arg` is as in lua.c.
+ * SIGINT and SIGTERM do not kill a run: the handler only records the signal (and puts
+ * back the default action, so a second signal kills at once); the step that is running
+ * ends, then w:step / w:run raise "interrupted (SIGINT) at t = ..., step ..." (lsph.c),
+ * which a script can catch to write its outputs and a state (scripts/squeeze.lua). The
+ * host then exits with status 128 + the signal (130, 143). A script busy in Lua alone
+ * (no step) sees the signal at its next step, or the host's exit status at its end. */
+#include "lsph.h"
 #include "sph.h"
 
 #include <lauxlib.h>
 #include <lua.h>
 #include <lualib.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 int luaopen_sph(lua_State *L);
+
+static struct sigaction default_action; /* SIG_DFL, made before the handler is installed */
+
+static void on_signal(int sig) {
+    sph_lua_interrupt = sig;
+    sigaction(SIGINT, &default_action, 0); /* async-signal-safe: a second signal kills */
+    sigaction(SIGTERM, &default_action, 0);
+}
+
+static void catch_signals(void) {
+    memset(&default_action, 0, sizeof default_action);
+    default_action.sa_handler = SIG_DFL;
+    sigemptyset(&default_action.sa_mask);
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaddset(&sa.sa_mask, SIGINT);
+    sigaddset(&sa.sa_mask, SIGTERM);
+    sa.sa_flags = SA_RESTART; /* a write the signal lands in goes on */
+    sigaction(SIGINT, &sa, 0);
+    sigaction(SIGTERM, &sa, 0);
+}
 
 static void usage(FILE *f) {
     fprintf(f,
@@ -81,7 +113,30 @@ static int run(lua_State *L) {
     return 0;
 }
 
+/* OpenMP threads wait passively (sleep) unless the environment says otherwise: libgomp's
+ * default spins for a while at every barrier, and with a thread on every core of a busy
+ * machine the spinning threads took the cores from the work (the headline squeeze: 25-49 s
+ * instead of 1 s). libgomp reads OMP_WAIT_POLICY once, when it is loaded, before main: a
+ * setenv here alone changes nothing (measured), so the host sets it and executes itself
+ * again (Linux, /proc/self/exe; elsewhere, or if that fails, it runs on as it is). */
+static void passive_wait(char **argv) {
+    if (getenv("OMP_WAIT_POLICY")) return;
+    if (setenv("OMP_WAIT_POLICY", "passive", 1)) return;
+    execv("/proc/self/exe", argv); /* returns only on failure */
+}
+
+/* cairo's and fontconfig's caches, for leak checkers: also when a script ends by os.exit
+ * (its status: squeeze.lua's 2, 130, 143), which skips the end of main */
+static void release_fonts(void) {
+    static int done = 0;
+    if (done) return;
+    done = 1;
+    sph_render_release_fonts();
+}
+
 int main(int argc, char **argv) {
+    passive_wait(argv);
+    atexit(release_fonts);
     if (argc < 2) {
         usage(stderr);
         return 2;
@@ -103,9 +158,13 @@ int main(int argc, char **argv) {
     lua_pushcfunction(L, run);
     lua_pushinteger(L, argc);
     lua_pushlightuserdata(L, argv);
+    catch_signals();
     int rc = lua_pcall(L, 2, 0, 1);
     if (rc != LUA_OK) fprintf(stderr, "sph: %s\n", lua_tostring(L, -1));
+    int sig = sph_lua_interrupt;
+    if (sig && rc == LUA_OK) fprintf(stderr, "sph: interrupted (%s)\n", sph_lua_signal_name(sig));
     lua_close(L);
-    sph_render_release_fonts(); /* cairo's and fontconfig's caches, for leak checkers */
+    release_fonts();
+    if (sig) return 128 + sig;
     return rc == LUA_OK ? 0 : 1;
 }

@@ -351,7 +351,12 @@ int sph_neighbours_build(sph_world *w) {
 #pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
     for (int i = 0; i < n; i++) cnt[i] = w->active[i] ? count_row(w, i, r2max) : 0;
     w->nb_start[0] = 0;
-    for (int i = 0; i < n; i++) w->nb_start[i + 1] = w->nb_start[i] + cnt[i];
+    for (int i = 0; i < n; i++) {
+        if (cnt[i] < 0) /* not among its own candidates: a position the grid does not hold (NaN) */
+            return sph_world_fail(w, "particle %d (id %d) at (%g, %g) is outside the cell grid at step %ld", i + 1,
+                                  w->id[i], w->x[i], w->y[i], w->steps);
+        w->nb_start[i + 1] = w->nb_start[i] + cnt[i];
+    }
     long total = w->nb_start[n];
     if (total > w->nb_cap) {
         long cap = total + total / 4 + 1024;

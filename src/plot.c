@@ -118,7 +118,11 @@ static void auto_range(const sph_plot_spec *s, int axis, double *lo, double *hi)
         return;
     }
     if (lg) {
+        /* whole decades, within the normal doubles: 5e-324 rounds down to 10^-324 = 0 and
+         * 1.7e308 up to 10^309 = inf, whose logarithms no tick loop can count from */
         a = pow(10, floor(log10(a))), b = pow(10, ceil(log10(b)));
+        if (!(a >= 1e-307)) a = 1e-307;
+        if (!(b <= 1e308)) b = 1e308;
         *lo = a, *hi = b > a ? b : 10 * a;
         return;
     }

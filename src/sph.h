@@ -54,7 +54,7 @@ typedef struct sph_params {
     double period_lo[2], period_hi[2];
     int symmetry[2];       /* mirror plane x = sym_at[0] / y = sym_at[1]           */
     double sym_at[2];
-    int threads;           /* 0: all cores; at most SPH_MAX_THREADS                */
+    int threads;           /* 0: all cores; at most SPH_MAX_THREADS (see "Threads") */
     double tol;            /* pressure solver: relative residual; default 1e-6     */
     double visc_tol;       /* implicit viscous solve: relative residual; default
                               1e-6 (README, Speed: what looser costs)                */
@@ -135,7 +135,19 @@ enum { SPH_GRAD_SYMMETRIC = 0, SPH_GRAD_DIFFERENCE = 1, SPH_GRAD_AUTO = 2 /* den
 
 void sph_params_default(sph_params *p);
 
-/* OpenMP threads a world may ask for. A fixed bound, not a multiple of this machine's
+/* Threads. A world runs threads OpenMP threads (sph_params.threads; 0, the default: one per
+ * core the machine has, at most SPH_MAX_THREADS; sph.world{threads = n}). They wait
+ * passively: the sph host sets OMP_WAIT_POLICY=passive when the environment does not say
+ * (main.c; it executes itself again for it, as libgomp reads the variable only when it is
+ * loaded). With libgomp's own default, threads spin at every barrier, and on a busy
+ * machine a thread on every core spun the cores away from the work: the headline squeeze
+ * (t_end = 0.05, two cores, two other busy processes) took 7-70 s instead of 0.7-0.9 s
+ * passive. A program embedding libsph (or lua loading sph.so) chooses the policy itself:
+ * set OMP_WAIT_POLICY=passive in its environment before it starts (a setenv in main is
+ * too late), or give threads = 1 on a shared machine. OMP_WAIT_POLICY=active (or any value
+ * set) in the host's environment is kept.
+ *
+ * OpenMP threads a world may ask for. A fixed bound, not a multiple of this machine's
  * cores, so a state saved on a large machine still loads on a small one; far beyond it
  * (threads = 100000) the OpenMP runtime overflowed its stack and crashed. */
 #define SPH_MAX_THREADS 256
@@ -148,8 +160,10 @@ void sph_params_default(sph_params *p);
 /* A new empty world; NULL with a message in err on bad parameters. */
 sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen);
 void sph_world_free(sph_world *w);
-/* The state (parameters, materials, plates, clock, statistics, particles) to a file, and a
- * new world from one (state.c): a restart on the same build; 0 / NULL with a message. */
+/* The state (parameters, materials, plates, clock, statistics, particles, and the solves'
+ * first guesses and multigrid hierarchies) to a file, and a new world from one (state.c):
+ * a restart on the same build, which continues the run bit for bit on the same thread
+ * count; 0 / NULL with a message (a file of another state version is named as such). */
 int sph_world_save(sph_world *w, const char *file);
 sph_world *sph_world_load(const char *file, char *err, size_t errlen);
 const char *sph_world_error(const sph_world *w);

@@ -514,6 +514,14 @@ int sph_world_step(sph_world *w, double dt) {
     w->lap = t0;
     prepare(w);
     if (w->nfluid == 0) return sph_world_fail(w, "the world has no fluid: call fill first");
+    /* a step that failed on a NaN leaves it in the particles; stepping on from there ran
+     * the neighbour build off its arrays (a particle not among its own candidates) */
+    if (check_finite(w)) {
+        char why[sizeof w->err];
+        memcpy(why, w->err, sizeof why);
+        return sph_world_fail(w, "cannot step: %.900s (left by a failed step: load a saved state or build the world "
+                                 "again)", why);
+    }
     if (!isfinite(dt))
         return sph_world_fail(w, "dt must be a finite positive number (or <= 0: adaptive), got %g at step %ld (t = %g)",
                               dt, w->steps, w->t);

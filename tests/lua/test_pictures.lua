@@ -164,6 +164,20 @@ T.case("render a field with a fixed range", function()
     "a constant field with a colour bar renders")
 end)
 
+-- A log axis's automatic range in whole decades: data at 5e-324 rounded down to 10^-324 = 0
+-- (1.7e308 up to 10^309 = inf), and the tick loop converted log10(0) = -inf to int (UBSan:
+-- signed overflow in axis_ticks; found by tests/lua/test_fuzz.lua). The decades now stay
+-- within [1e-307, 1e308].
+T.case("log axes of data at the ends of the doubles", function()
+  local dir = os.tmpname()
+  for _, y in ipairs{ { 5e-324, 1 }, { 1, 1.7e308 }, { 5e-324, 1.7e308 } } do
+    T.check(sph.plot{ file = dir .. ".png", log = "xy", series = { { x = y, y = y } } } ~= nil,
+            string.format("a log plot of data from %g to %g", y[1], y[2]))
+  end
+  os.remove(dir .. ".png")
+  os.remove(dir)
+end)
+
 T.case("ranges of any finite width end", function()
   -- the tick search of a colour bar or an axis ends for any finite range: a span of one
   -- subnormal (its tick step underflowed to 0 and the search spun forever), the widest

@@ -3,6 +3,8 @@
 -- exits 0. (Its failure path, an engine error that stops the run, writes what was computed,
 -- prints the message and exits 1: checked by hand on the thin film with the defaults,
 -- which stops at step 970 of width=1.6 height=0.2 dx=0.025; too long for this suite.)
+-- Interrupted by SIGINT / SIGTERM it writes its outputs and a state and exits 130 / 143;
+-- restarted from the state it ends as the uninterrupted run.
 local T = require "sph.test"
 local sph_bin = arg[-1]
 local top = arg[0]:match("^(.*)/tests/lua/[^/]+$") or "."
@@ -53,6 +55,91 @@ T.case("headline squeeze script, the solver options reach the engine", function(
   text, code = run("mode=velocity Re=10 Bn=0.5 M=100 dx=0.05 t_end=0.005 dt_growth=slow")
   T.check(code == 1 and text:find("dt_growth", 1, true) ~= nil, "squeeze.lua with dt_growth=slow exits 1 naming dt_growth", text)
 end)
+
+-- Early endings say why, with a status that is not 0 (issue 27 D): h_stop before t_end
+-- stops with status 2 and the gap; a gap under 3 particles across is refused (status 1).
+T.case("headline squeeze script, stopped at h_stop before t_end", function()
+  local text, code = run("mode=velocity Re=10 Bn=0.5 M=100 dx=0.05 t_end=1 h_stop=0.9")
+  T.check(code == 2, "squeeze.lua exits 2 when h_stop ends the run before t_end", text)
+  T.check(text:find("stopped at t = 0.1", 1, true) ~= nil and text:find("<= h_stop = 0.9, before t_end = 1", 1, true) ~= nil,
+          "it says where and why it stopped", text)
+  T.check(not text:find("done:", 1, true), "it does not call the run done", text)
+  T.check(lines(dir .. "/series.csv") > 2, "the series up to the stop is written", tostring(lines(dir .. "/series.csv")))
+end)
+
+T.case("headline squeeze script, a gap too thin for the particles", function()
+  local text, code = run("mode=load F=-1.3e8 Re=1 Bn=0 dx=0.05 t_end=0.01 h_stop=0.05")
+  T.check(code == 1 and text:find("h_stop = 0.05 is 1.0 particles across (dx = 0.05): the gap must stay at least 3", 1, true) ~= nil,
+          "h_stop = dx is refused with status 1 and the reason", text)
+  T.check(not text:find("done:", 1, true), "no run is reported as done", text)
+  text, code = run("mode=velocity Re=1 Bn=0 width=1.6 height=0.1 dx=0.05 t_end=0.001")
+  T.check(code == 1 and text:find("height = 0.1 is 2.0 particles across", 1, true) ~= nil,
+          "a sample 2 particles high is refused", text)
+  text, code = run("mode=velocity Re=1 Bn=0 dx=0.05 t_end=0.001 h_stop=0.15")
+  T.check(code == 0, "h_stop = 3 dx runs", text)
+end)
+
+-- SIGINT / SIGTERM (src/main.c, lsph.c): the step ends, w:run raises "interrupted", the
+-- script writes its series, plots and a state, says how to go on and exits 128 + signal;
+-- restarted from the state with the same arguments it ends as the uninterrupted run, series
+-- bit for bit.
+local function file_size(f)
+  local g = io.open(f, "rb")
+  if not g then return nil end
+  local n = g:seek("end")
+  g:close()
+  return n
+end
+
+for _, sig in ipairs{ { "INT", 130, "SIGINT" }, { "TERM", 143, "SIGTERM" } } do
+  T.case("headline squeeze script, interrupted by SIG" .. sig[1], function()
+    local d = dir .. "/int_" .. sig[1]
+    local args = "mode=velocity V=0.2 Re=10 Bn=0.5 M=100 dx=0.05 t_end=1.5 plots=1 threads=1"
+    os.execute("mkdir -p '" .. d .. "'")
+    -- in the background; killed once its series has 20 rows
+    local cmd = string.format("%s %s/scripts/squeeze.lua %s out=%s >%s/log 2>&1 & pid=$!; i=0; "
+      .. "while [ \"$(cat %s/series.csv 2>/dev/null | wc -l)\" -lt 20 ] && [ $i -lt 600 ]; do sleep 0.02; i=$((i+1)); done; "
+      .. "kill -%s $pid; wait $pid; echo \"exit=$?\"", sph_bin, top, args, d, d, d, sig[1])
+    local p = assert(io.popen(cmd))
+    local res = p:read("a")
+    p:close()
+    local lf = io.open(d .. "/log")
+    local log = lf and lf:read("a") or ""
+    if lf then lf:close() end
+    T.check(tonumber(res:match("exit=(%d+)")) == sig[2], "squeeze.lua exits " .. sig[2] .. " on SIG" .. sig[1], res .. log)
+    T.check(log:find("interrupted (" .. sig[3] .. ") at t=", 1, true) ~= nil, "it says it was interrupted, and when", log)
+    T.check(log:find("restart=" .. d .. "/state.bin", 1, true) ~= nil, "it says how to continue", log)
+    T.check((file_size(d .. "/h.png") or 0) > 0 and (file_size(d .. "/force.png") or 0) > 0, "the plots are written", log)
+    local rows = lines(d .. "/series.csv")
+    T.check(rows >= 20 and rows < 302, "the series holds the rows so far", rows)
+    local sph = require "sph"
+    local ok, w = pcall(sph.load, d .. "/state.bin")
+    T.check(ok and w.t > 0 and w.t < 1.5, "sph.load reads the state it saved", w)
+    if not ok then return end
+    w:close()
+    if sig[1] ~= "INT" then return end
+    -- continued to the end, against the run never interrupted
+    local pr = assert(io.popen(string.format("%s %s/scripts/squeeze.lua %s out=%s restart=%s/state.bin 2>&1; echo \"exit=$?\"",
+      sph_bin, top, args, d, d)))
+    local text = pr:read("a")
+    pr:close()
+    local code = tonumber(text:match("exit=(%d+)"))
+    T.check(code == 0 and text:find("restart: ", 1, true) ~= nil, "the restart runs to the end", text)
+    local ref = dir .. "/int_ref"
+    local p2 = assert(io.popen(string.format("%s %s/scripts/squeeze.lua %s out=%s 2>&1", sph_bin, top, args, ref)))
+    p2:read("a")
+    p2:close()
+    local function read(f)
+      local g = io.open(f, "rb")
+      local t = g and g:read("a") or ""
+      if g then g:close() end
+      return t
+    end
+    local a, b = read(d .. "/series.csv"), read(ref .. "/series.csv")
+    T.check(#a > 0 and a == b, "the restarted run's series is the uninterrupted one's, bit for bit",
+      #a .. " vs " .. #b .. " bytes")
+  end)
+end
 
 os.execute("rm -rf '" .. dir .. "'")
 T.done()

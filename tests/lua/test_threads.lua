@@ -78,4 +78,23 @@ T.case("threads = 1 and threads = 2 agree to round-off", function()
     string.format("%.17g vs %.17g", a.h, b.h))
 end)
 
+-- The sph host makes OpenMP threads wait passively unless the environment says otherwise
+-- (src/main.c, sph.h "Threads"): spinning threads on a busy machine took the headline case
+-- from 1 s to 25-70 s.
+T.case("the host's default OpenMP wait policy is passive", function()
+  local f = os.tmpname()
+  local g = assert(io.open(f, "w"))
+  g:write('print("policy=" .. tostring(os.getenv("OMP_WAIT_POLICY")))\n')
+  g:close()
+  local function policy(env)
+    local p = assert(io.popen(string.format("%s %s %s 2>&1", env, arg[-1], f)))
+    local out = p:read("a")
+    p:close()
+    return out:match("policy=(%S+)")
+  end
+  T.check(policy("env -u OMP_WAIT_POLICY") == "passive", "unset: the host runs with OMP_WAIT_POLICY=passive")
+  T.check(policy("env OMP_WAIT_POLICY=active") == "active", "a policy given in the environment is kept")
+  os.remove(f)
+end)
+
 T.done()
