@@ -716,7 +716,9 @@ static void shepard(sph_world *w, double *p, double *pt) {
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int i = 0; i < n; i++) {
         if (!w->active[i] || (w->kind[i] == SPH_FLUID && w->surf[i])) {
-            pt[i] = p[i]; /* free surface: its n . tau . n; inactive walls: not a pressure */
+            /* free surface: its n . tau . n (0 where it holds p = 0, whatever this particle's
+             * pressure was before it came to the surface); inactive walls: not a pressure */
+            pt[i] = w->kind[i] == SPH_FLUID && !sph_surface_traction(w, i) ? 0.0 : p[i];
             continue;
         }
         double s = w->vol[i] * w0, sp = s * p[i];
