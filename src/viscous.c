@@ -122,13 +122,10 @@ static void surface_pressure(sph_world *w, const double *u, const double *v) {
  * continued into the plate): no boundary term there. Images: T_ab times s_a s_b. */
 static void transpose_accel(const sph_world *w, int i, double *ax, double *ay) {
     int k0 = w->nb_start[i], km = w->nb_mid[i], k1 = w->nb_start[i + 1];
-    if (!sph_surface_traction(w, i)) {
-        *ax = *ay = 0.0;
-        return;
-    }
-    int need = w->surf[i];
-    for (int k = k0; k < km && !need; k++) need = w->surf[w->src[w->nb_j[k]]];
     *ax = *ay = 0.0;
+    if (!sph_surface_traction(w, i)) return;
+    int need = w->surf[i]; /* a free-surface particle in the support */
+    for (int k = k0; k < km && !need; k++) need = w->surf[w->src[w->nb_j[k]]];
     if (!need) return;
     double ei = w->mats[w->mat[i]].mu;
     double txx = ei * w->gux[i], txy = ei * w->guy[i], tyx = ei * w->gvx[i], tyy = ei * w->gvy[i];
