@@ -20,14 +20,15 @@
 --                                       [dt_growth=fixed|eased] [from_t=] [density_wait=0]
 --                                       [density_gradient=auto|symmetric|difference]
 -- until_t: the timed steps run until the time t reaches it instead of `steps` of them (the
--- same span of the flow for every dt rule: README, *Speed*, t = 0.009 at dx = 1/450).
+-- same span of the flow for every dt rule: docs/performance.md, t = 0.009 at dx = 1/450).
 -- from_t: after the adaptive warm-up, untimed steps at the timed rule's dt until t reaches
 -- from_t, then the timed steps: every size timed over the same span of the flow. Steps 21-80
 -- at dx/40 are not that: they end at t = 2 dx, 0.0125 at 1/160 but 0.0013 at 1/1400, where
 -- the impulsive start's viscous layer (depth sqrt(nu t), nu = 1) still moves 0.4 dx a step
--- (README, *Speed*).
+-- (docs/performance.md).
 -- density_limit is passed to sph.world (0: no passes beyond density_passes; at 10^6 the
--- default's extra passes take most of the step: README, *Speed*).
+-- default's extra passes took most of the step before density_gradient = "auto": README.md's
+-- *Speed* in git history).
 -- max_n caps the particle count (fluid + wall) of the ladder (default 1.2e5; the 10^6 row is
 -- opt-in: max_n=1e6, several minutes a run); dx= runs one
 -- resolution only. Runs are interleaved (run 1 of every thread count, then run 2, ...) and

@@ -11,9 +11,9 @@
 -- height=0.2), and the engine options density_correction, pressure_gradient, wall (the
 -- thin-film options: at constant velocity pressure_gradient=difference, under a load
 -- density_correction=gmres pressure_gradient=difference; README, Thin films),
--- density_descent and projection_passes (README, Validation), tol and visc_tol (the pressure
--- and viscous solves' relative residuals; README, Speed), dt_growth (fixed | eased: README,
--- Speed; eased for large runs).
+-- density_descent and projection_passes (docs/api.md), tol and visc_tol (the pressure
+-- and viscous solves' relative residuals; docs/performance.md), dt_growth (fixed | eased:
+-- docs/performance.md; eased for large runs).
 -- Writes out/series.csv: t, h, plate velocity, plate force, solver iterations, max
 -- density error, and the lubrication reference (Newtonian: mu V / h^6 or h(t) under load).
 -- Exit status: 0 the run reached t_end; 1 an error (bad arguments, a gap under 3 particles

@@ -346,7 +346,7 @@ static int correction_solve(sph_world *w, double tol, double *f, int diff, doubl
      * against 2.95 / 11.4, 2,126 ns a particle-step against 2,683) but worsens the
      * thin-film validations (Newtonian film 0.153 -> 0.204 at dx = 1/30, under load 0.371
      * -> 0.652) and the cavity (RMS 0.0233 U), mostly through the longer time step its
-     * lower error allows: an option (README). */
+     * lower error allows: an option (docs/api.md). */
     displacement(w, f, diff, dx, dy);
     return 0;
 }
@@ -437,15 +437,16 @@ static int density_pass(sph_world *w, int pass, double *alpha_out) {
      * validation of make test it never falls short (the same runs bit for bit). At 10^6
      * particles (the paper's squeeze, steps 21-80 at dt = dx/40, one thread) it does from
      * the start (above), the difference direction wins and keeps winning: every first pass
-     * then moves along it, as with density_gradient = "difference" (README, Speed, session
-     * 18: 2.95 -> 2.00 pressure-type solves a step, 11.4 -> 5.8 iterations, max error 0.79
-     * -> 0.50 %). Switching only when the symmetric direction fell short, and back at once
+     * then moves along it, as with density_gradient = "difference" (docs/performance.md;
+     * measured: 2.95 -> 2.00 pressure-type solves a step, 11.4 -> 5.8 iterations, max error
+     * 0.79 -> 0.50 %). Switching only when the symmetric direction fell short, and back at once
      * (session 18's first version): 2.07 solves, 9.6 iterations, the first pass's warm start
      * missing (3-5 iterations against 1-2), as the two forms alternated. Only the first
      * pass: a later pass whose symmetric direction moves nothing is where the thin films'
      * error stays above density_tol and holds their time step down, which is what keeps
-     * their force accurate (the difference form everywhere: README, Speed). The second
-     * direction lives in the projection's scratch (ru, rv) and the later passes' (dp). */
+     * their force accurate (the difference form everywhere: README.md's *Speed*, session 17,
+     * in git history). The second direction lives in the projection's scratch (ru, rv) and
+     * the later passes' (dp). */
     if (auto_first && alpha < 1.0) {
         double *hx = w->ru, *hy = w->rv, *hd = w->dp, gain2;
         displacement(w, f, !diff, hx, hy);

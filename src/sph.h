@@ -57,7 +57,7 @@ typedef struct sph_params {
     int threads;           /* 0: all cores; at most SPH_MAX_THREADS (see "Threads") */
     double tol;            /* pressure solver: relative residual; default 1e-6     */
     double visc_tol;       /* implicit viscous solve: relative residual; default
-                              1e-6 (README, Speed: what looser costs)                */
+                              1e-6 (docs/performance.md: what looser costs)          */
     sph_linear_solver solver; /* CG preconditioner: SPH_SOLVER_AMG (default) or JACOBI */
     int max_iter;          /* pressure solver: iteration limit                     */
     double surface_div;    /* free surface where div r < surface_div (2D: 2 full)  */

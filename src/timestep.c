@@ -76,7 +76,7 @@ double sph_timestep_compute(sph_world *w) {
      * 4.0 viscous iterations, 1,911 ns, max error 0.48 %, the run 21 % faster. Not the
      * default: small runs take up to twice the steps (the headline squeeze at 800
      * particles 456 -> 979, 1.0 -> 1.9 s), where a step with the second pass costs little
-     * more, and the validation errors move (README, Speed). */
+     * more, and the validation errors move (docs/performance.md). */
     if (w->dt_prev > 0) {
         double grow = 1.25;
         if (P->dt_eased && P->density_tol > 0) {

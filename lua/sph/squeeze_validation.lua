@@ -263,7 +263,7 @@ M.cases = {
     -- window starts 0.02 of time after the impulsive start (Re = 1: the gap's viscous time
     -- rho h^2 / mu is 0.03). Measured (one thread): 0.1475 / 0.1217 / 0.1102 / 0.0861 at
     -- 1/30 .. 1/80 (mean F / lubrication 0.860 / 0.884 / 0.899 / 0.933; 0.088 and 0.938 at
-    -- 1/100). Part of what is left is the walls' first-order slip (README, Validation).
+    -- 1/100). Part of what is left is the walls' first-order slip (docs/limitations.md).
     name = "Newtonian squeeze, thin film",
     error_name = "relative L2 of the plate force against lubrication over h in [0.17, 0.18] (a/h 9.9-11), film started thin (h0 = 0.2, half-width 1.6), Re = 1, density_correction = gmres, pressure_gradient = difference",
     resolutions = { 1 / 30, 1 / 40, 1 / 60, 1 / 80 },

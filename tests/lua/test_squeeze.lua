@@ -52,7 +52,7 @@ end)
 
 -- density_gradient = "difference" (the density correction's displacement in the
 -- renormalised difference form, blind to a level of phi: at 10^6 particles the symmetric
--- form's passes lose their step length next to the free surface, README *Speed*): the same
+-- form's passes lose their step length next to the free surface, docs/method.md): the same
 -- squeeze keeps the density criterion and its force (the default, "auto", never leaves the
 -- symmetric form on this squeeze: its runs are the symmetric form's). Measured (two threads): 353 steps
 -- against 395, max density error 0.73 % against 0.75 %, window means of the force 0.2 /

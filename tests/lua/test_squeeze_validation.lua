@@ -57,7 +57,7 @@ for _, c in ipairs(V.cases) do cases[c.name] = c end
 -- there (0.25 to 0.4), and none of the errors below is mostly discretisation error: they
 -- barely change from dx = 1/20 to 1/30 (orders 0.2-0.4) or 1/40 (see make bench). The
 -- tolerances are two-sided, so that a change of the engine that moves these figures
--- either way is noticed and the figures here (and in the README) are updated.
+-- either way is noticed and the figures here (and in docs/limitations.md) are updated.
 
 T.case("Newtonian squeeze at constant velocity against lubrication", function()
   local rs, order = study(cases["Newtonian squeeze V = 1"])
