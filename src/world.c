@@ -67,12 +67,15 @@ static const char *check_params(const sph_params *p) {
         "projection_passes must be in [0, 10]", "density_descent must be in [0, 100]", "visc_tol must be in (0, 1)",
         "dt_eased must be 0 or 1", "density_wait must be in [0, 1000]", "density_probe must be in [0, 1)",
         "density_gradient must be SPH_GRAD_AUTO, SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE",
-        "threads must be 1..256 (0: all cores)"};
+        "threads must be 1..256 (0: all cores)", "cvisc must be a positive number",
+        "cforce must be a positive number"};
     _Static_assert(SPH_MAX_THREADS == 256, "the threads message names the bound");
     if (!(p->dx > 0 && isfinite(p->dx))) return bad[0];
     if (!(p->h >= 0 && isfinite(p->h))) return bad[1];
     if (!(p->rho0 > 0 && isfinite(p->rho0))) return bad[2];
-    if (!(p->cfl > 0 && p->cfl <= 1) || !(p->cvisc > 0) || !(p->cforce > 0)) return bad[3];
+    if (!(p->cfl > 0 && p->cfl <= 1)) return bad[3];
+    if (!(p->cvisc > 0 && isfinite(p->cvisc))) return bad[29];
+    if (!(p->cforce > 0 && isfinite(p->cforce))) return bad[30];
     for (int a = 0; a < 2; a++) {
         if (p->periodic[a] && !(p->period_lo[a] < p->period_hi[a])) return bad[4];
         if (p->periodic[a] && p->symmetry[a]) return bad[5];
