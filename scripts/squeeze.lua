@@ -29,13 +29,51 @@
 -- 130 (SIGINT) or 143 (SIGTERM). A second signal kills at once.
 local sph = require "sph"
 local squeeze = require "sph.squeeze"
-local o = ... or {}
+local params = require "sph.params"
 
-local mode = o.mode or "velocity"
-if mode ~= "velocity" and mode ~= "load" then error("mode must be velocity or load, got " .. tostring(mode)) end
-local Re, Bn, M, dx = o.Re or 10, o.Bn or 0.5, o.M or 800, o.dx or 1 / 40
-local t_end, every = o.t_end or 0.5, o.every or 0.005
-local out = o.out or "out/squeeze"
+-- every parameter: name, kind, default (nil: the engine's or a derived one), meaning
+local SPEC = {
+  { "mode", { "velocity", "load" }, "velocity", "constant plate velocity or constant load" },
+  { "Re", "number", 10, "Reynolds number (rho)" },
+  { "Bn", "number", 0.5, "Bingham number (tau0); 0: Newtonian" },
+  { "M", "number", 800, "Papanastasiou exponent (m)" },
+  { "dx", "number", 1 / 40, "particle spacing" },
+  { "t_end", "number", 0.5, "end time" },
+  { "every", "number", 0.005, "output interval" },
+  { "F", "number", -10, "load on the whole sample (mode=load; negative compresses)" },
+  { "V", "number", 1, "plate speed (mode=velocity)" },
+  { "width", "number", 0.5, "the half sample's width" },
+  { "height", "number", 1, "the sample's height" },
+  { "h_min", "number", nil, "thinnest gap the plates are sized for (min(0.25, 0.8 height))" },
+  { "h_stop", "number", nil, "end the run when the gap is thinner (h_min)" },
+  { "out", "string", "out/squeeze", "output folder" },
+  { "frames", "integer", 0, "yield-state frames over the run (and the animation)" },
+  { "fps", "number", 10, "the animation's frames per second" },
+  { "frame_width", "integer", 800, "frame width in pixels" },
+  { "plots", "flag", nil, "1: h.png and force.png (default: with frames)" },
+  { "restart", "string", nil, "a saved state to continue (out/state.bin)" },
+  { "threads", "integer", nil, "threads (all cores)" },
+  { "viscosity", { "implicit", "explicit" }, nil, "the viscous step" },
+  { "shifting", "number", nil, "particle shifting coefficient (20)" },
+  { "density_correction", { "passes", "gmres" }, nil, "engine option (docs/api.md)" },
+  { "pressure_gradient", { "symmetric", "difference" }, nil, "engine option (docs/api.md)" },
+  { "wall", { "linear", "curved" }, nil, "engine option (docs/api.md)" },
+  { "projection_passes", "integer", nil, "engine option (docs/api.md)" },
+  { "density_descent", "number", nil, "engine option (docs/api.md)" },
+  { "tol", "number", nil, "pressure solve's relative residual" },
+  { "visc_tol", "number", nil, "viscous solve's relative residual" },
+  { "dt_growth", { "fixed", "eased" }, nil, "engine option (docs/api.md)" },
+}
+local ok, o = pcall(params.parse, "squeeze", SPEC, ...)
+if not ok then
+  io.stderr:write(tostring(o), "\n")
+  os.exit(1)
+end
+
+local mode = o.mode
+local Re, Bn, M, dx = o.Re, o.Bn, o.M, o.dx
+local t_end, every = o.t_end, o.every
+local out = o.out
 
 local world_opts = { threads = o.threads, viscosity = o.viscosity, shifting = o.shifting,
                      density_correction = o.density_correction, pressure_gradient = o.pressure_gradient, wall = o.wall,
@@ -71,7 +109,13 @@ if restart then
   bottom, top = w:plate(1), w:plate(2)
 end
 
-os.execute("mkdir -p '" .. out .. "'")
+do
+  local made, why = sph.mkdir(out)
+  if not made then
+    io.stderr:write("squeeze: ", why, "\n")
+    os.exit(1)
+  end
+end
 -- a restart keeps the series' rows up to the state's time (their plot data too)
 local old_rows = {}
 if restart then
@@ -99,7 +143,7 @@ local nframes = math.floor(o.frames or 0)
 local frames = {}
 local frame_opts
 if nframes > 0 then
-  os.execute("mkdir -p '" .. out .. "/frames'")
+  assert(sph.mkdir(out .. "/frames"))
   local b, t = view_rects[1], view_rects[2] -- a fixed view: the plates' width, the initial gap
   local pad = 0.02 * (t[4] - b[2])
   local view = { b[1], b[2] - pad, b[3], t[4] + pad }

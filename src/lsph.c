@@ -946,5 +946,6 @@ int luaopen_sph(lua_State *L) {
     lua_pushinteger(L, omp_get_num_procs());
     lua_setfield(L, -2, "cores");
     sph_lua_pictures_open(L);
+    sph_lua_files_open(L);
     return 1;
 }

@@ -16,6 +16,9 @@ sph_world *sph_lua_checkworld(lua_State *L, int idx);
    world method render. */
 void sph_lua_pictures_open(lua_State *L);
 
+/* Files (lfiles.c): with the module table on top, add sph.mkdir. */
+void sph_lua_files_open(lua_State *L);
+
 /* Options tables (loptions.c). Errors name the function and the option. */
 /* Reject keys of the table at idx that are not in the NULL-terminated keys. */
 void sph_lua_opt_only(lua_State *L, int idx, const char *fname, const char *const *keys);

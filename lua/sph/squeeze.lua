@@ -15,9 +15,24 @@ function S.stop_height(tau0, F) return (tau0 / (2 * F)) ^ (1 / 3) end
 -- opts: dx, Re, Bn, M, mode ("velocity" | "load"), V (plate speed, default 1), F (load,
 -- a compressive force is negative, as in the paper), h_min (how thin the sample will get:
 -- sizes the plates), width and height (the half sample's, default 0.5 and 1: a film
--- started thin is e.g. width = 1.6, height = 0.2), viscosity, shifting, threads, and any
--- other sph.world option via opts.world.
+-- started thin is e.g. width = 1.6, height = 0.2), and any sph.world option (viscosity,
+-- threads, ...) via opts.world. Any other key is an error: a misspelt option would
+-- otherwise be ignored.
+local KEYS = { dx = true, Re = true, Bn = true, M = true, mode = true, V = true, F = true, h_min = true,
+               width = true, height = true, world = true }
 function S.build(opts)
+  for k in pairs(opts) do
+    if not KEYS[k] then
+      local names = {}
+      for n in pairs(KEYS) do names[#names + 1] = n end
+      table.sort(names)
+      error(string.format("squeeze.build: unknown option '%s' (the options are %s; engine options go in world = {...})",
+        tostring(k), table.concat(names, ", ")), 2)
+    end
+  end
+  if opts.mode ~= nil and opts.mode ~= "velocity" and opts.mode ~= "load" then
+    error(string.format("squeeze.build: mode must be \"velocity\" or \"load\", got %s", tostring(opts.mode)), 2)
+  end
   local dx = opts.dx or 1 / 40
   local Re, Bn, M = opts.Re or 1, opts.Bn or 0, opts.M or 800
   local h_min = opts.h_min or 0.3

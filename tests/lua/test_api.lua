@@ -502,4 +502,40 @@ T.case("a time step below the minimum says what set it", function()
   T.checkerror("gravity 1e+30", "dt collapse names gravity when it sets the force limit", w.step, w)
 end)
 
+
+T.case("sph.mkdir makes a folder and its parents, and says why when it cannot", function()
+  local base = os.tmpname()
+  os.remove(base)
+  local deep = base .. "/a'b c/d//e/"
+  T.check(sph.mkdir(deep) == true, "sph.mkdir makes nested folders (a quote and a space in a name)")
+  T.check(sph.mkdir(deep) == true, "an existing folder is success")
+  local f = assert(io.open(deep .. "f.txt", "w"))
+  f:write("x")
+  f:close()
+  local ok, why = sph.mkdir(deep .. "f.txt/g")
+  T.check(ok == nil and tostring(why):find("f.txt", 1, true) ~= nil and tostring(why):find("Not a directory", 1, true) ~= nil,
+          "a file in the way: nil and a message naming it", tostring(why))
+  T.checkerror("empty path", "sph.mkdir('')", sph.mkdir, "")
+  os.remove(deep .. "f.txt")
+  os.remove(base .. "/a'b c/d/e")
+  os.remove(base .. "/a'b c/d")
+  os.remove(base .. "/a'b c")
+  os.remove(base)
+end)
+
+T.case("sph.params: case parameters checked by name and type", function()
+  local params = require "sph.params"
+  local SPEC = { { "n", "integer", 3 }, { "x", "number", 0.5 }, { "mode", { "a", "b" }, "a" }, { "name", "string", nil } }
+  local o = params.parse("case", SPEC, { n = 4 })
+  T.check(o.n == 4 and o.x == 0.5 and o.mode == "a" and o.name == nil, "defaults fill in, given values stay")
+  o = params.parse("case", SPEC, "n=5", "x=1e-3", "mode=b", "name=it's")
+  T.check(o.n == 5 and o.x == 1e-3 and o.mode == "b" and o.name == "it's", "name=value strings (a stock lua5.4's arguments)")
+  T.checkerror("case: unknown parameter 'mdoe' (did you mean mode?)", "a misspelt name", params.parse, "case", SPEC, { mdoe = "a" })
+  T.checkerror('case: x must be a number, got "abc"', "x = abc", params.parse, "case", SPEC, { x = "abc" })
+  T.checkerror("case: n must be an integer, got 2.5", "n = 2.5", params.parse, "case", SPEC, { n = 2.5 })
+  T.checkerror("case: mode must be one of a, b", "mode = c", params.parse, "case", SPEC, { mode = "c" })
+  T.checkerror("x must be a number", "x = inf", params.parse, "case", SPEC, { x = "inf" })
+  T.checkerror("name=value expected", "a bare word", params.parse, "case", SPEC, "n")
+end)
+
 T.done()

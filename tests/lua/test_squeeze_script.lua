@@ -142,4 +142,56 @@ for _, sig in ipairs{ { "INT", 130, "SIGINT" }, { "TERM", 143, "SIGTERM" } } do
 end
 
 os.execute("rm -rf '" .. dir .. "'")
+
+-- Case parameters are checked: a misspelt name or a value of the wrong type stops the run
+-- with status 1 and a message naming the parameter (it used to run the default case).
+T.case("headline squeeze script, bad parameters are refused by name", function()
+  local text, code = run("viscocity=explicit t_end=0.001 dx=0.05")
+  T.check(code == 1 and text:find("unknown parameter 'viscocity' (did you mean viscosity?)", 1, true) ~= nil,
+          "a misspelt parameter exits 1 and suggests the right name", text)
+  T.check(text:find("the parameters are: mode, Re, Bn", 1, true) ~= nil, "the message lists the parameters", text)
+  text, code = run("Bn=abc t_end=0.001 dx=0.05")
+  T.check(code == 1 and text:find('Bn must be a number, got "abc"', 1, true) ~= nil, "Bn=abc exits 1 naming Bn", text)
+  text, code = run("mode=lod t_end=0.001 dx=0.05")
+  T.check(code == 1 and text:find("mode must be one of velocity, load", 1, true) ~= nil, "mode=lod names mode", text)
+  text, code = run("frames=2.5 t_end=0.001 dx=0.05")
+  T.check(code == 1 and text:find("frames must be an integer", 1, true) ~= nil, "frames=2.5 names frames", text)
+end)
+
+-- The output folder is made without a shell: a quote in its name is a name like any other.
+T.case("headline squeeze script, an output folder with a quote in its name", function()
+  local odir = dir .. "/it's here/deeper"
+  local cmd = string.format("%s %s/scripts/squeeze.lua \"out=%s\" threads=1 dx=0.05 t_end=0.005 2>&1; echo \"exit=$?\"",
+    sph_bin, top, odir)
+  local p = assert(io.popen(cmd))
+  local text = p:read("a")
+  p:close()
+  T.check(tonumber(text:match("exit=(%d+)")) == 0, "squeeze.lua runs with out= holding a quote", text)
+  T.check(lines(odir .. "/series.csv") > 1, "its series is in that folder", text)
+end)
+
+-- The same script and arguments under a stock lua5.4 (where it is installed) with the
+-- module and helpers on its paths.
+T.case("headline squeeze script under lua5.4", function()
+  local ok = os.execute("command -v lua5.4 >/dev/null 2>&1")
+  if not ok then
+    print("# lua5.4 not installed: skipped")
+    return
+  end
+  local env = string.format("LUA_CPATH='%s/build/?.so;;' LUA_PATH='%s/lua/?.lua;;'", top, top)
+  local cmd = string.format("%s lua5.4 %s/scripts/squeeze.lua mode=velocity Re=10 Bn=0.5 M=100 dx=0.05 t_end=0.01 out=%s/l54 threads=1 2>&1; echo \"exit=$?\"",
+    env, top, dir)
+  local p = assert(io.popen(cmd))
+  local text = p:read("a")
+  p:close()
+  T.check(tonumber(text:match("exit=(%d+)")) == 0 and text:find("done: t=0.01", 1, true) ~= nil,
+          "lua5.4 runs the script with its arguments", text)
+  cmd = string.format("%s lua5.4 %s/scripts/squeeze.lua Bn=abc 2>&1; echo \"exit=$?\"", env, top)
+  p = assert(io.popen(cmd))
+  text = p:read("a")
+  p:close()
+  T.check(tonumber(text:match("exit=(%d+)")) == 1 and text:find("Bn must be a number", 1, true) ~= nil,
+          "lua5.4 refuses Bn=abc by name", text)
+end)
+
 T.done()
