@@ -8,9 +8,9 @@
 #ifndef SPH_H
 #define SPH_H
 
+/* Only the C library: the pictures layer (render, plot, animate; needs cairo to link) has
+   its own header, sph_pictures.h. */
 #include <stddef.h>
-
-#include "sph_pictures.h" /* render, plot, animate: plain data in, PNG out */
 
 #define SPH_VERSION "0.1.0"
 
