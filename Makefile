@@ -46,14 +46,14 @@ $(B):
 	mkdir -p $(B)
 
 test: all
-	@sh tests/run.sh $(B)
+	@CC="$(CC)" sh tests/run.sh $(B)
 
 # the suite under the sanitizers; the API fuzz test (tests/lua/test_fuzz.lua) makes 30,000
 # calls there, with the seed SPH_FUZZ_SEED from the environment (else the clock's; printed)
 check:
 	$(MAKE) SANITIZE=1 OPT=-O1 all
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 SPH_FUZZ_CALLS=$${SPH_FUZZ_CALLS:-30000} \
-	    SPH_FUZZ_SEED=$${SPH_FUZZ_SEED:-$$(date +%s)} sh tests/run.sh build-san
+	    SPH_FUZZ_SEED=$${SPH_FUZZ_SEED:-$$(date +%s)} CC="$(CC)" sh tests/run.sh build-san
 
 # make bench [only=WORD,...|none] [quick=1]: see scripts/bench.sh
 bench: all $(B)/bench_render
@@ -70,12 +70,15 @@ stability: all
 validate: all
 	$(B)/sph scripts/validate.lua
 
+# The headers a C user needs: sph.h (the engine, C library only) and sph_pictures.h (render,
+# plot, animate; plain data in, PNG out: link with cairo). pictures_cairo.h is internal.
+PUBLIC_HEADERS := src/sph.h src/sph_pictures.h
 PREFIX ?= /usr/local
 install: all
 	install -d $(PREFIX)/bin $(PREFIX)/lib $(PREFIX)/include $(PREFIX)/share/lua/5.4/sph
 	install -m 755 $(B)/sph $(PREFIX)/bin/sph
 	install -m 644 $(B)/libsph.a $(PREFIX)/lib/
-	install -m 644 src/sph.h $(PREFIX)/include/
+	install -m 644 $(PUBLIC_HEADERS) $(PREFIX)/include/
 	install -d $(PREFIX)/lib/lua/5.4
 	install -m 755 $(B)/sph.so $(PREFIX)/lib/lua/5.4/sph.so
 	install -m 644 lua/sph/*.lua $(PREFIX)/share/lua/5.4/sph/

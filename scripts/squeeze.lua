@@ -193,7 +193,7 @@ local function record(w)
     print(string.format("note: t=%.4g, the gap h=%.4f is %.1f particles across; the defaults fail in thin films "
       .. "(README, Thin films): %s", w.t, h, h / dx, thin_options))
   end
-  series:write(string.format("%.8g,%.8g,%.8g,%.8g,%d,%.4e,%s\n", w.t, h, top.velocity, top.force,
+  series:write(string.format("%.8g,%.8g,%.8g,%.8g,%d,%.4e,%s\n", w.t, h, top:velocity(), top.force,
     s.solver_iterations, s.max_density_error, ref(h, w.t) == ref(h, w.t) and string.format("%.8g", ref(h, w.t)) or ""))
   series:flush()
   ts[#ts + 1], hs[#hs + 1], fs[#fs + 1], refs[#refs + 1] = w.t, h, top.force, ref(h, w.t)

@@ -3,6 +3,7 @@
  * live in userdata so a Lua error on the way leaks nothing; a spec the pictures layer
  * rejects is an error, a file that cannot be read or written is `nil, message`. */
 #include "lsph.h"
+#include "sph_pictures.h"
 
 #include <lauxlib.h>
 #include <math.h>

@@ -747,20 +747,37 @@ static sph_world *plate_world(lua_State *L, int idx, lplate **out) {
     return lw->w;
 }
 
-/* plate:velocity(v | f) / plate:load(F | f): numbers go to the engine, functions are kept
- * in the world's uservalue and called once per step. */
-static int set_law(lua_State *L, int load) {
+/* plate:velocity(v | f) / plate:load(F | f) set the plate's law: numbers go to the engine,
+ * functions are kept in the world's uservalue and called once per step; both return the
+ * plate. Without an argument they read: plate:velocity() is the current velocity along
+ * the axis, plate:load() the load applied this step (nil unless the plate is under a load
+ * law). An explicit nil is an error, not a read: top:velocity(opts.V) with opts.V unset
+ * must not pass silently. Errors name the method, also when it is called through a copy
+ * (pcall(top.velocity, top, v)), where Lua itself knows no name. */
+static int law(lua_State *L, int load) {
+    const char *name = load ? "load" : "velocity";
+    if (!luaL_testudata(L, 1, PLATE))
+        return luaL_error(L, "calling '%s' on bad self (sph.plate expected, got %s: call it as plate:%s(...))",
+                          name, luaL_typename(L, 1), name);
     lplate *lp;
     sph_world *w = plate_world(L, 1, &lp);
+    if (lua_gettop(L) == 1) { /* the read */
+        if (!load) lua_pushnumber(L, sph_plate_velocity(w, lp->index));
+        else if (sph_plate_mode_of(w, lp->index) == SPH_PLATE_LOAD) lua_pushnumber(L, sph_plate_load(w, lp->index));
+        else lua_pushnil(L);
+        return 1;
+    }
     int t = lua_type(L, 2);
     if (t != LUA_TNUMBER && t != LUA_TFUNCTION)
-        return luaL_argerror(L, 2, lua_pushfstring(L, "number or function of (t, plate) expected, got %s",
-                                                   luaL_typename(L, 2)));
+        return luaL_error(L, "bad argument #1 to '%s' (number or function of (t, plate) expected, got %s%s%s%s)",
+                          name, luaL_typename(L, 2), t == LUA_TNIL ? "; plate:" : "", t == LUA_TNIL ? name : "",
+                          t == LUA_TNIL ? "() with no argument reads it" : "");
     if (sph_plate_axis(w, lp->index) < 0)
         return luaL_error(L, "plate %d has no axis: it is fixed (give axis = \"x\" or \"y\" to move it)",
                           lp->index + 1);
     double v = t == LUA_TNUMBER ? lua_tonumber(L, 2) : 0.0;
-    if (t == LUA_TNUMBER && !isfinite(v)) return luaL_argerror(L, 2, "finite number expected");
+    if (t == LUA_TNUMBER && !isfinite(v))
+        return luaL_error(L, "bad argument #1 to '%s' (finite number expected, got %f)", name, v);
     if ((load ? sph_plate_set_load(w, lp->index, v) : sph_plate_set_velocity(w, lp->index, v)) < 0)
         return engine_error(L, w);
     lua_getiuservalue(L, 1, 1);
@@ -772,7 +789,7 @@ static int set_law(lua_State *L, int load) {
     return 1;
 }
 
-static int p_velocity(lua_State *L) { return set_law(L, 0); }
+static int p_velocity(lua_State *L) { return law(L, 0); }
 
 /* plate:slide(ux, uy) sets the surface velocity (returns the plate); plate:slide() returns
  * ux, uy. */
@@ -792,7 +809,7 @@ static int p_slide(lua_State *L) {
     lua_settop(L, 1);
     return 1;
 }
-static int p_load(lua_State *L) { return set_law(L, 1); }
+static int p_load(lua_State *L) { return law(L, 1); }
 
 static int p_index(lua_State *L) {
     lplate *lp;
@@ -800,7 +817,7 @@ static int p_index(lua_State *L) {
     const char *k = luaL_checkstring(L, 2);
     int i = lp->index;
     if (!strcmp(k, "position")) lua_pushnumber(L, sph_plate_position(w, i));
-    else if (!strcmp(k, "velocity")) lua_pushnumber(L, sph_plate_velocity(w, i)); /* callable: see below */
+    else if (!strcmp(k, "axial_velocity")) lua_pushnumber(L, sph_plate_velocity(w, i));
     else if (!strcmp(k, "force")) lua_pushnumber(L, sph_plate_force(w, i));
     else if (!strcmp(k, "mass")) lua_pushnumber(L, sph_plate_mass(w, i));
     else if (!strcmp(k, "index")) lua_pushinteger(L, i + 1);
@@ -819,7 +836,8 @@ static int p_index(lua_State *L) {
             lua_pushnumber(L, r[q]);
             lua_rawseti(L, -2, q + 1);
         }
-    } else if (!strcmp(k, "load")) lua_pushcfunction(L, p_load);
+    } else if (!strcmp(k, "velocity")) lua_pushcfunction(L, p_velocity);
+    else if (!strcmp(k, "load")) lua_pushcfunction(L, p_load);
     else if (!strcmp(k, "slide")) lua_pushcfunction(L, p_slide);
     else lua_pushnil(L);
     return 1;
@@ -842,35 +860,6 @@ static int p_tostring(lua_State *L) {
                     sph_plate_position(w, lp->index), sph_plate_velocity(w, lp->index),
                     sph_plate_force(w, lp->index));
     return 1;
-}
-
-/* plate.velocity is a number, and plate:velocity(v) sets the law: the number's
- * metatable gets a __call that accepts exactly that form and raises Lua's usual error
- * for any other call of a number. */
-static int number_call(lua_State *L) {
-    if (lua_gettop(L) >= 2 && luaL_testudata(L, 2, PLATE)) {
-        /* only plate:velocity(...): every number shares this metatable, so plate:mass(50)
-         * (or :force, :position) would otherwise land here and set the velocity to 50. The
-         * caller's name for the call says which field was called; where Lua does not know
-         * it, the number must be the plate's velocity itself. */
-        lua_Debug ar;
-        const char *name = 0;
-        if (lua_getstack(L, 0, &ar) && lua_getinfo(L, "n", &ar)) name = ar.name;
-        lplate *lp;
-        sph_world *w = plate_world(L, 2, &lp);
-        int ok = name ? !strcmp(name, "velocity")
-                      : lua_tonumber(L, 1) == sph_plate_velocity(w, lp->index);
-        if (!ok) {
-            if (name && (!strcmp(name, "mass") || !strcmp(name, "force") || !strcmp(name, "position") ||
-                         !strcmp(name, "index")))
-                return luaL_error(L, "plate.%s is a value, not a method (%s)", name,
-                                  strcmp(name, "mass") ? "it cannot be set" : "set it with plate.mass = m");
-            return luaL_error(L, "attempt to call a number value");
-        }
-        lua_remove(L, 1);
-        return p_velocity(L);
-    }
-    return luaL_error(L, "attempt to call a number value");
 }
 
 /* ---- module --------------------------------------------------------------------- */
@@ -924,21 +913,8 @@ int luaopen_sph(lua_State *L) {
         lua_setfield(L, -2, "__tostring");
     }
     lua_pop(L, 1);
-    /* callable numbers for plate:velocity(...) (kept if a metatable is already there) */
-    lua_pushnumber(L, 0);
-    if (!lua_getmetatable(L, -1)) {
-        lua_newtable(L);
-        lua_pushcfunction(L, number_call);
-        lua_setfield(L, -2, "__call");
-        lua_setmetatable(L, -2);
-    } else {
-        if (lua_getfield(L, -1, "__call") == LUA_TNIL) {
-            lua_pushcfunction(L, number_call);
-            lua_setfield(L, -3, "__call");
-        }
-        lua_pop(L, 2);
-    }
-    lua_pop(L, 1);
+    /* nothing here touches the metatables of Lua's own types (DESIGN.md): plate.velocity
+       is the method, the velocity is plate:velocity() or plate.axial_velocity */
 
     luaL_newlib(L, funcs);
     lua_pushliteral(L, SPH_VERSION);

@@ -10,6 +10,7 @@
  * (no step) sees the signal at its next step, or the host's exit status at its end. */
 #include "lsph.h"
 #include "sph.h"
+#include "sph_pictures.h"
 
 #include <lauxlib.h>
 #include <lua.h>

@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "message.h"
-#include "sph_pictures.h"
+#include "pictures_cairo.h"
 
 #define MAX_TICKS 160
 #define TWO_PI 6.28318530717958647692

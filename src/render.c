@@ -12,7 +12,7 @@
 
 #include "atomic.h"
 #include "message.h"
-#include "sph_pictures.h"
+#include "pictures_cairo.h"
 
 #define MIN_SIZE 8
 #define MAX_SIZE 16384

@@ -8,9 +8,9 @@
 #ifndef SPH_H
 #define SPH_H
 
+/* Only the C library: the pictures layer (render, plot, animate; needs cairo to link) has
+   its own header, sph_pictures.h. */
 #include <stddef.h>
-
-#include "sph_pictures.h" /* render, plot, animate: plain data in, PNG out */
 
 #define SPH_VERSION "0.1.0"
 
@@ -198,6 +198,9 @@ int sph_plate_axis(const sph_world *w, int plate);
 /* Coordinate along the axis of the face that touches the fluid. */
 double sph_plate_position(const sph_world *w, int plate);
 double sph_plate_velocity(const sph_world *w, int plate);
+/* The load applied along the axis (the whole sample's) in SPH_PLATE_LOAD mode; 0 in the
+ * other modes. */
+double sph_plate_load(const sph_world *w, int plate);
 /* Fluid force on the plate along its axis (the whole sample's, with a symmetry plane). */
 double sph_plate_force(const sph_world *w, int plate);
 double sph_plate_mass(const sph_world *w, int plate);

@@ -7,11 +7,14 @@
    be NULL. Nothing aborts, exits or prints.
 
    Coordinates: "world" means the simulation's units (whatever the script uses), y up;
-   "pixel" means image pixels, origin at the top-left corner, y down. */
+   "pixel" means image pixels, origin at the top-left corner, y down.
+
+   This header needs only the C library: no cairo type appears in it (linking needs
+   cairo: -lcairo, or `pkg-config --libs cairo`). The functions that draw into a caller's
+   cairo context are in pictures_cairo.h, internal to the engine and its tests. */
 #ifndef SPH_PICTURES_H
 #define SPH_PICTURES_H
 
-#include <cairo.h>
 #include <stddef.h>
 
 /* ---------------------------------------------------------------- colour maps (colormap.c) */
@@ -80,13 +83,8 @@ void sph_render_category_color(int category, double rgb[3]);
 int sph_render_layout(const sph_render_spec *s, sph_render_frame *f, char *err, size_t errlen);
 /* World point to pixel through a resolved frame. */
 void sph_render_to_pixel(const sph_render_frame *f, double x, double y, double *px, double *py);
-/* Draw into the rectangle (0, 0, width, height) of the caller's context: background,
-   particles (one path and one fill per colour), plates, label, colour bar. */
-int sph_render_draw(const sph_render_spec *s, cairo_t *cr, char *err, size_t errlen);
 /* Draw to a new RGB image of width x height and write it as PNG to `file`. */
 int sph_render_png(const sph_render_spec *s, const char *file, char *err, size_t errlen);
-/* Write any cairo surface as PNG, with a message naming the file when it fails. */
-int sph_render_write_png(cairo_surface_t *surface, const char *file, char *err, size_t errlen);
 /* At exit, after the last drawing (no cairo object alive): free the font caches cairo and
    fontconfig keep for the whole process, so leak checkers (make check) stay quiet. */
 void sph_render_release_fonts(void);
@@ -128,8 +126,6 @@ int sph_plot_to_pixel(const sph_plot_frame *f, double x, double y, double *px, d
 /* "Nice" linear ticks (1, 2, 5 x 10^k) inside [lo, hi], at most about `most` of them;
    writes up to `cap` values and returns how many. */
 int sph_plot_ticks(double lo, double hi, int most, double *ticks, int cap);
-/* Draw into the rectangle (0, 0, width, height) of the caller's context. */
-int sph_plot_draw(const sph_plot_spec *s, cairo_t *cr, char *err, size_t errlen);
 /* Draw to a new image and write it as PNG to `file`. */
 int sph_plot_png(const sph_plot_spec *s, const char *file, char *err, size_t errlen);
 

@@ -758,6 +758,9 @@ void sph_plate_slide(const sph_world *w, int k, double slide[2]) {
 sph_plate_mode sph_plate_mode_of(const sph_world *w, int k) { return w->plates[k].mode; }
 int sph_plate_axis(const sph_world *w, int k) { return w->plates[k].axis; }
 double sph_plate_velocity(const sph_world *w, int k) { return w->plates[k].vel; }
+double sph_plate_load(const sph_world *w, int k) {
+    return w->plates[k].mode == SPH_PLATE_LOAD ? w->plates[k].load : 0.0;
+}
 double sph_plate_force(const sph_world *w, int k) { return w->plates[k].force; }
 double sph_plate_mass(const sph_world *w, int k) { return w->plates[k].mass; }
 void sph_plate_rect(const sph_world *w, int k, double rect[4]) {

@@ -1,6 +1,6 @@
 #!/bin/sh
-# The one test runner: C unit tests (build/tests/test_*) and Lua tests (tests/lua/*.lua,
-# run by the sph host). Every check prints "ok - ..." or "not ok - ..."; a program that
+# The one test runner: the public headers (tests/headers.sh, with $CC), C unit tests
+# (build/tests/test_*) and Lua tests (tests/lua/*.lua, run by the sph host). Every check prints "ok - ..." or "not ok - ..."; a program that
 # exits non-zero without a "not ok" line counts as one failure. Ends with the summary line.
 B=${1:-build}
 # OpenMP threads sleep instead of spinning while they wait: with more threads than free
@@ -24,6 +24,8 @@ run() {
     pass=$((pass + p)); fail=$((fail + f))
     rm -f "$out"
 }
+# the public headers need only the C library; libsph.a links without cairo or Lua
+run headers.sh sh "$top/tests/headers.sh" "$B"
 for t in "$top/$B"/tests/test_*; do
     [ -x "$t" ] || continue
     run "$(basename "$t")" "$t"

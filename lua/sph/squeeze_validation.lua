@@ -83,7 +83,7 @@ function M.plastic_force(h, tau0, A) return tau0 * (A or 1) ^ 2 / (2 * h ^ 3) en
 local function squeeze_to(w, top, h_end, name, dx, sample, max_steps)
   while top.position > h_end do
     w:step()
-    local h, F, V = top.position, top.force, top.velocity
+    local h, F, V = top.position, top.force, top:velocity()
     if h ~= h or F ~= F or V ~= V or math.abs(F) == math.huge or math.abs(V) == math.huge then
       error(string.format("%s, dx = %g: non-finite plate state (h = %g, V = %g, F = %g) at step %d, t = %g",
         name, dx, h, V, F, w.steps, w.t))

@@ -8,7 +8,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "sph_pictures.h"
+#include "pictures_cairo.h"
 
 #define RUNS 5
 

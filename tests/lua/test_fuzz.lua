@@ -175,10 +175,13 @@ local ops = {
     local p = pick(pool.plates)
     if not p then return end
     local k = R(4)
-    if k == 1 then return p:velocity(R() < 0.6 and number() or law()) end
-    if k == 2 then return p:load(R() < 0.6 and number() or law()) end
-    if k == 3 then p[pick{ "mass", "n", "velocity", "x" }] = value() return end
-    return p[pick{ "position", "velocity", "force", "mass", "mode", "axis", "rect", "index", "fixed", "slide", "x" }]
+    -- a law (a number, a function, or anything), or a read: no argument
+    local function arg() local r = R() return r < 0.5 and number() or r < 0.8 and law() or value() end
+    if k == 1 then if R() < 0.15 then return p:velocity() end return p:velocity(arg()) end
+    if k == 2 then if R() < 0.15 then return p:load() end return p:load(arg()) end
+    if k == 3 then p[pick{ "mass", "n", "velocity", "axial_velocity", "x" }] = value() return end
+    return p[pick{ "position", "velocity", "axial_velocity", "force", "mass", "mode", "axis", "rect", "index", "fixed",
+                   "slide", "x" }]
   end },
   { "w:plate(k)", function() return a_world():plate(value()) end },
   { "w:step", function()
@@ -361,6 +364,10 @@ print("# succeeded: " .. table.concat(parts, ", "))
 T.check(true, "the fuzzed API did not crash (" .. CALLS .. " calls, seed " .. SEED .. ")")
 T.check(bad == 0, "every error the fuzzed API raised is a Lua string", bad .. " were not")
 T.check(errors > CALLS / 10 and errors < CALLS, "the fuzz raises errors and also succeeds", errors)
+-- nothing sph did changed the types of Lua's own values (DESIGN.md)
+T.check(getmetatable(1) == nil and getmetatable(true) == nil and getmetatable(print) == nil and getmetatable(nil) == nil,
+        "after the fuzz, numbers, booleans, functions and nil still have no metatable")
+T.check(getmetatable("").__index == string, "after the fuzz, strings still index the string library")
 os.execute("rm -rf '" .. dir .. "'")
 -- not T.done(): os.exit skips closing the Lua state, and the host's release of cairo's and
 -- fontconfig's caches after it (the leak checker of make check counted them)

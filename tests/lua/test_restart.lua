@@ -19,7 +19,8 @@ local function same_run(w, w2, name)
     local a, b = w:plate(k), w2:plate(k)
     if a.position ~= b.position then diff[#diff + 1] = "plate " .. k .. " position" end
     if a.force ~= b.force then diff[#diff + 1] = string.format("plate %d force %.17g vs %.17g", k, a.force, b.force) end
-    if a.velocity ~= b.velocity then diff[#diff + 1] = "plate " .. k .. " velocity" end
+    if a:velocity() ~= b:velocity() then diff[#diff + 1] = "plate " .. k .. " velocity" end
+    if a:load() ~= b:load() or a.mode ~= b.mode then diff[#diff + 1] = "plate " .. k .. " law" end
   end
   for _, f in ipairs{ "x", "y", "u", "v", "p", "rho", "eta", "gammadot", "stress", "yielded", "speed", "surface",
                       "material", "id", "rho_sum", "divr" } do
@@ -60,7 +61,7 @@ T.case("save, load and continue", function()
   for i = 1, #xs do same = same and xs[i] == xs2[i] and rhos[i] == rhos2[i] end
   T.check(same and #xs == #xs2, "the loaded particles are the saved ones, bit for bit (x and rho)")
   local top2 = w2:plate(2)
-  T.check(top2.velocity == -1 and top2.mode == "velocity", "the loaded plate keeps its law's value")
+  T.check(top2:velocity() == -1 and top2.mode == "velocity", "the loaded plate keeps its law's value")
   for _ = 1, 30 do w2:step() end
   same_run(w, w2, "continued 30 steps: bit for bit")
   os.remove(file)

@@ -1,6 +1,7 @@
 /* Animated PNG: write frames, assemble them, and decode the result with an independent
    decoder (Pillow, through /usr/bin/python3) that also checks every chunk's CRC with zlib
    and the APNG sequence numbers. A missing Pillow is a failure, not a skip. */
+#include <cairo.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>

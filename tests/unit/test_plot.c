@@ -1,5 +1,6 @@
 /* Line plots: a known straight line lands on the pixels the mapping predicts and nowhere
    else; log axes survive zeros; holes break lines; bad input and unwritable files fail. */
+#include <cairo.h>
 #include <float.h>
 #include <stdint.h>
 #include <stdlib.h>

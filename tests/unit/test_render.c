@@ -6,7 +6,7 @@
 #include <unistd.h>
 
 #include "atomic.h"
-#include "sph_pictures.h"
+#include "pictures_cairo.h"
 #include "unit.h"
 
 static char dir[] = "/tmp/sph_test_render_XXXXXX";
