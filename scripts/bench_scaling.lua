@@ -10,9 +10,6 @@
 --   dt = adaptive: the engine's own step control (w:step()), what a run pays; each size
 --     takes its own dt, printed as dt/dx (the plate's travel a step in dx, V = 1).
 -- The column ns/dx is the cost of moving the plate by one dx: ns a particle-step over dt/dx.
--- (Until session 15 the fixed dt was min(dt_dx dx, the warm-up's last adaptive step): the
--- 10^6 rows then ran at a smaller dt than the others, 6.9e-6 against dx/40 = 1.8e-5 in one
--- run.)
 -- Run by scripts/bench.sh (`make bench`); by hand:
 --   build/sph scripts/bench_scaling.lua [max_n=120000] [runs=3] [steps=60] [warmup=20]
 --                                       [dt=0.025|adaptive] [until_t=] [threads=1,2] [dx=0.0025]
@@ -26,9 +23,7 @@
 -- at dx/40 are not that: they end at t = 2 dx, 0.0125 at 1/160 but 0.0013 at 1/1400, where
 -- the impulsive start's viscous layer (depth sqrt(nu t), nu = 1) still moves 0.4 dx a step
 -- (docs/performance.md).
--- density_limit is passed to sph.world (0: no passes beyond density_passes; at 10^6 the
--- default's extra passes took most of the step before density_gradient = "auto": README.md's
--- *Speed* in git history).
+-- density_limit is passed to sph.world (0: no passes beyond density_passes).
 -- max_n caps the particle count (fluid + wall) of the ladder (default 1.2e5; the 10^6 row is
 -- opt-in: max_n=1e6, several minutes a run); dx= runs one
 -- resolution only. Runs are interleaved (run 1 of every thread count, then run 2, ...) and

@@ -21,24 +21,14 @@
  * backward sweeps after it, so the preconditioner is symmetric positive definite and CG can
  * use it. The finest level visits the next one once, every coarser level twice (a W-cycle
  * below the finest level: the coarse levels hold a sixth of the nonzeros, so it costs about
- * 20 % more than a V-cycle per iteration; measured on the squeeze's pressure matrix at
- * dx = 1/320, 51,866 rows: 7.8 CG iterations per solve against 10.0 with the V-cycle, and
- * on the unit test's SPH-like stencil at 65,536 rows 11 against 14). Measured and not
- * kept: two sweeps per level (14 -> 12 iterations for twice the smoothing), omega = 0.8 or
- * 1 in the prolongation smoother (no gain, 17 at 1), theta = 0.02 or 0.04 (the same
- * counts on the squeeze). With several threads the sweeps are hybrid: Gauss-Seidel
- * inside each thread's block of rows, Jacobi (the values from before the sweep) across
- * blocks; the blocks are the same in both directions, so the cycle stays symmetric. */
+ * 20 % more than a V-cycle per iteration, and on the pressure matrix it takes a fifth fewer
+ * iterations). With several threads the sweeps are hybrid: Gauss-Seidel inside each
+ * thread's block of rows, Jacobi (the values from before the sweep) across blocks; the
+ * blocks are the same in both directions, so the cycle stays symmetric. */
 /* Code placement: the hot loops on 64-byte boundaries. The sweeps' speed depends on where
- * their loops fall: this file's unchanged source compiled twice into one binary (a renamed
- * copy) and timed solve by solve, alternately, differed by x0.88-0.92 on the pressure-type
- * solves at 10^5 particles, and after this session's changes the default build ran the
- * step 6 % slower than before them (squeeze Bn = 5, M = 800, Re = 1, V = -1, 106,902
- * particles, 1 thread, four interleaved triples on the shared machine: 2,716 ns a
- * particle-step before, 2,891 after, 2,735 after with this alignment; the pressure-type
- * solves per neighbour-search time 2.36 / 2.57 / 2.25, the viscous 3.42 / 3.46 / 3.12).
- * GCC only (clang ignores the pragma); the same flags in the Makefile would do it for
- * every file. */
+ * their loops fall: the same source at another place in the binary runs the pressure-type
+ * solves up to 12 % slower. GCC only (clang ignores the pragma); the same flags in the
+ * Makefile would do it for every file. */
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC optimize("align-loops=64", "align-functions=64")
 #endif
@@ -122,20 +112,9 @@ static int transpose(const sph_csr *a, int m, sph_csr *t, int *cur) {
 
 /* c = a b (a: n x k, b: k x m; Gustavson's row-by-row product, duplicate-free result).
  * One pass: each thread appends its block of rows to its own buffer (grown as needed),
- * then the blocks are copied into c. (It was two passes, one to count each row's entries
- * and one to fill them: the count was ~30 % of the product's time, and the fine level's
- * A P is ~40 % of a setup at 10^5 rows.) Tried and dropped (the viscous setup at 1.01e5
- * rows, 1 thread, best of 5 interleaved medians on the shared machine): the inner loop
- * without the branch on a new column (select and unconditional stores) and a bound per row
- * from b's longest row instead of the pass over a's row, 48.2 -> 49.0 ms (no gain: the
- * compiler kept a branch, and the loop is ~2.5 ns per product term either way; session 7,
- * branch-free for certain, the column stored always and kept by a conditional increment,
- * the restart of a new column's sum by an integer mask: A P on the unit test's SPH-like
- * stencil at 102,400 rows 13.3 -> 24.2 ms, the dependent stores and reloads cost more than
- * the mispredictions); b's rows of
- * up to 4 entries padded to 4 (no branch on the row length), 49.4 -> 61.5 ms. Setup at
- * that size, per part: A P 36 %, the smoothers' copies 19 %, the merged copy of the fine
- * matrix and vectors 13 %, P and R 12 %, R (A P) 10 %, strength 5 %, aggregation 4 %. */
+ * then the blocks are copied into c. A first pass to count each row's entries would cost
+ * ~30 % of the product's time, and the fine level's A P is the largest part of a setup
+ * (about a third at 10^5 rows). */
 static int spgemm(sph_amg *g, const sph_csr *a, const sph_csr *b, int m, sph_csr *c, int threads) {
     int n = a->n;
     if (n < SPH_AMG_PAR_MIN) threads = 1;
@@ -303,13 +282,9 @@ static int aggregate(sph_amg *g, const sph_csr *a, int n) {
     return nc;
 }
 
-/* P = (I - omega D_F^-1 A_F) T for the aggregates in g->agg (nc columns). Measured and not
- * kept (session 7): the unsmoothed P = T for the viscous system (its diagonal dominates; one
- * entry a row makes A P and R A P cheap): squeeze at 10^5 particles (Bn = 5, M = 800, Re = 1,
- * V = -1, dx = 1/450, steps 4-11, two interleaved pairs on the shared machine) viscous setup
- * 66.6 / 55.4 -> 39.5 / 39.1 ms a step, but 5.5 -> 8.8 CG iterations per component and the
- * pair's solves 76.2 / 70.2 -> 96.4 / 98.7 ms: setup plus solves 142.8 / 125.6 -> 135.9 /
- * 137.8 ms, no gain. */
+/* P = (I - omega D_F^-1 A_F) T for the aggregates in g->agg (nc columns). The viscous
+ * systems take the smoothed P too: the unsmoothed T (one entry a row) makes their setup
+ * cheaper, but the solves' extra iterations cost as much. */
 static int prolongation(sph_amg *g, const sph_csr *a, sph_csr *P, int nc) {
     int n = a->n, *agg = g->agg, *ss = g->sstart, *sj = g->sj;
     /* each row: its own aggregate plus its strong neighbours' (at most 1 + strong count) */
@@ -460,10 +435,9 @@ static int setup_impl(sph_amg *g, const sph_csr *a, const sph_csr *a2, int threa
         }
     /* coarsest: dense Cholesky when small enough, else Gauss-Seidel sweeps. Up to
      * 4 coarse_max rows only below the finest level: a whole system of a few hundred rows
-     * (nothing coarsened: a small scene, or a viscous matrix whose diagonal dominates) was
-     * factored densely at every setup, n^3 / 3 flops; measured, Taylor-Green at dx = 1/20
-     * (400 particles) 13.9 s -> 3.7 s back to back, the Poiseuille start-up at 1/40 (460)
-     * 9.1 -> 2.4 s in the validation bench (3,965 ns per particle-step, as one size up). */
+     * (nothing coarsened: a small scene, or a viscous matrix whose diagonal dominates) would
+     * be factored densely at every setup, n^3 / 3 flops, which makes small runs several
+     * times slower. */
     if (coarse_factor(g, l, coarse_max)) {
         g->levels = 0;
         return -1;
@@ -474,9 +448,8 @@ static int setup_impl(sph_amg *g, const sph_csr *a, const sph_csr *a2, int threa
 int sph_amg_setup(sph_amg *g, const sph_csr *a, int threads) { return setup_impl(g, a, 0, threads); }
 
 /* sph_amg_setup, then sph_amg_second with a2, the finest smoother's two copies made in one
- * pass (the columns and the split into L and U done once for both). The two copies of the
- * unit test's SPH-like stencil (102,400 rows, caches flushed, medians of 11, loaded
- * machine): 13.0 ms in two passes, 8.3 ms in one; the same copies bit for bit. */
+ * pass (the columns and the split into L and U done once for both: a third faster than two
+ * passes, the same copies bit for bit). */
 int sph_amg_setup_pair(sph_amg *g, const sph_csr *a, const sph_csr *a2, int threads) {
     return setup_impl(g, a, a2, threads);
 }
@@ -520,12 +493,7 @@ static void matvec(const sph_csr *a, const double *x, double *y, int threads) {
 }
 
 /* x += P e, the coarse correction: the product (the sums of sph_csr_matvec) and the update
- * in one pass, on the threads (the update was a serial pass over a vector of its own; the
- * same figures bit for bit). Its gain on one thread is within what code placement alone
- * moves: the cycle's unchanged source compiled twice into one binary (a renamed copy) and
- * timed alternately solve by solve differs by x0.88-0.92 on the pressure-type solves and
- * x0.94-0.96 on the viscous pairs at 10^5 particles; this change measured x0.92-0.96 and
- * x0.96-0.99 that way. */
+ * in one pass, on the threads (the same figures bit for bit as a product and an update). */
 static void prolong_add(const sph_csr *p, const double *e, double *x, int threads) {
     int n = p->n;
     const int *st = p->start, *col = p->col;

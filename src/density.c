@@ -1,6 +1,6 @@
 /* The density correction (sph_density_correct): after the projection, the continuity
  * density's error is removed by moving the particles, with the pressure system's matrix
- * (pressure.c, whose top comment gives the scheme and what was measured for it):
+ * (pressure.c, whose top comment gives the scheme):
  * density_diffusion's filter, the passes (density_pass), the density descent when they
  * stall, the GMRES fallback, or density_correction = "gmres" on its own. */
 #include "internal.h"
@@ -12,22 +12,13 @@
 /* density_diffusion: one explicit step of rho_i += kappa h^2 sum_j 2 V_ij (rho_i - rho_j) F_ij
  * between interior fluid particles (F_ij < 0: the pressure matrix's compact Laplacian;
  * V_ij = (m_i + m_j) / (rho_i + rho_j), symmetric, so between interior particles the
- * exchange is pairwise and the sum of rho is kept). It damps the continuity density's particle-scale
- * modes, which the correction's wide divergence cannot see, and barely touches smooth
- * ones (tests/unit/test_density.c: a lattice checkerboard x 0.62, one sine across the box
- * x 0.990 at kappa = 0.1). Measured on the long thin-film squeeze (square sample, V = 1,
- * Re = 1, dx = 1/40), which fails near h = 0.24 without it (a checkerboard of the
- * continuity density in the stagnation zone): kappa = 0.05 reaches h = 0.15 (max density
- * error under 1 % down to h = 0.19, 2.8-3.9 % at the end; F h^6 0.71-0.86 of lubrication
- * over h 0.25-0.15, a/h 8-22); kappa = 0.1 stopped at h = 0.158 (dt collapsed after a
- * pressure jump with the density error at 0.5 %; an earlier variant of the same formula,
- * with F at the end-of-step positions, reached 0.15: where it fails is round-off-sensitive);
- * kappa = 0.15 and 0.2 fail near h = 0.2 (with the error held low the density control no
- * longer shortens dt; h^2 times the largest diagonal was 2.7-2.9, so kappa <= 0.25 keeps
- * the diffusion step itself stable). Not the default: it changes the squeeze forces,
- * mostly through the longer steps the lower error allows (Newtonian V = 1, dx = 1/20:
- * error 0.303 -> 0.573 at kappa = 0.1 in 611 steps instead of 1790; 0.309 against 0.262
- * with dt_max = 1e-4). */
+ * exchange is pairwise and the sum of rho is kept). It damps the continuity density's
+ * particle-scale modes, which the correction's wide divergence cannot see (the checkerboard
+ * a long thin-film squeeze builds in its stagnation zone), and barely touches smooth ones
+ * (tests/unit/test_density.c: a lattice checkerboard x 0.62, one sine across the box
+ * x 0.990 at kappa = 0.1). h^2 times the largest diagonal is below 3, so kappa <= 0.25
+ * keeps the diffusion step itself stable. Not the default: it changes the squeeze forces,
+ * mostly through the longer steps the lower error allows. */
 static void diffuse_density(sph_world *w) {
     double kap = w->par.density_diffusion, rho0 = w->par.rho0, h2 = w->h * w->h, maxerr = 0.0;
     int n = w->n;
@@ -63,29 +54,18 @@ static int density_pass(sph_world *w, int pass, double *alpha);
  * removes the smooth part of the error, not all of it: the matrix is the compact Laplacian
  * and the displacement's divergence the wide SPH one, so a short-wavelength error (the
  * column-to-column pattern a squeeze leaves next to the plate/free-surface corner) is only
- * partly removed and builds up. Measured, Newtonian squeeze, Re = 1000, dx = 1/40, t = 0.4:
- * max density error 1.6 % (1 pass), 0.92 % (2); Re = 1 to h = 0.34: 0.58 % with 2 passes.
- * Each further pass removes less (a mode that the displacement's divergence barely sees),
- * but the passes run only while the error is above density_tol: Re = 0.01 to h = 0.6
- * (dt already at its floor, so the step control cannot help) peaked at 2.4 % (2 passes),
- * 1.3 % (4), 0.68 % (8); Bn = 100 under load 1.08 % (2), 0.63 % (4). The default stays 2:
- * with the error removed by passes, dt no longer shrinks, and the loaded plates' time error
- * shows (Newtonian squeeze under F = 20, dx = 1/20: closing speed 1.63 times lubrication in
- * 1329 steps with 2 passes, 1.78 times in 487 steps with 8). A Shepard
- * filter of the continuity density instead (every 20 steps) only took Re = 0.01 from 2.4 to
- * 1.9 %, and every step it let particles through the plate: the filtered density no longer
- * sees a clump.
+ * partly removed and builds up; a second pass about halves what the first leaves. Each
+ * further pass removes less (a mode that the displacement's divergence barely sees). The
+ * default stays 2: more passes remove the error that shortens dt, and the loaded plates'
+ * time error then shows.
  * So the extra passes come only where the error would break the 1 % criterion: after
  * density_passes, passes go on (up to SPH_MAX_DENSITY_PASSES) while the error is above
- * density_limit (0.8 %). Measured (dx = 1/40, one thread): Re = 0.01 2.33 -> 0.80 %
- * (9.5 -> 13.6 s), Bn = 100 load 1.09 -> 0.80 % (22 -> 33 s), the paper's Bn = 5 F* = -10
- * to t = 2 1.20 -> 0.80 % (10.5 -> 10.9 s, h(2) 0.633 unchanged); the validation
- * squeezes barely move (Newtonian V = 1 at 1/30 0.278 -> 0.268, F = 20 0.535 -> 0.524,
- * Bingham V = 1 0.073 -> 0.069, F = 400 1.12 -> 1.14). */
+ * density_limit (0.8 %); that holds the stability suite under it and barely moves the
+ * validation squeezes. */
 /* Steepest descent on the continuity density error (density_descent; see
  * sph_density_correct). With e = rho / rho0 - 1 over interior fluid (0 on the free surface
  * and walls) and d = D r the continuity change of a displacement r (D the renormalised
- * wide divergence, field_div), the gradient of 1/2 sum (e_i + d_i)^2 is D^T e, which is,
+ * wide divergence, sph_field_div), the gradient of 1/2 sum (e_i + d_i)^2 is D^T e, which is,
  * up to the renormalisation matrix taken at the particle itself and its neighbours' masses,
  * the symmetric SPH gradient of e: the move -grad e (particles go from where the density
  * is high to where it is low) lowers the squared error for a short enough step, whatever
@@ -96,25 +76,10 @@ static int density_pass(sph_world *w, int pass, double *alpha);
  * density follows by continuity (displace); moves go on while the error is above
  * density_limit, up to K, and stop when the move would not lower the error (the
  * approximate transpose, or nothing left to move).
- * Measured (one thread, dx = 1/40):
- * - the stability suite's thin film (square sample, Re = 1, V = 1, to h = 0.15): from
- *   h = 0.24 its front is a tongue, off both plates by about 1.5 dx, and the rows next to
- *   its free surface gathered the error (the passes at step length 0, 1 % at h = 0.238,
- *   9 % at h = 0.196 where the time step collapsed). With the descent the error never
- *   passes 0.80 %; one move brings it under density_limit at nearly every step that takes
- *   one (162 moves in steps 3001-4582, two threads); the film then ran to h = 0.1507
- *   (10,096 steps), where the symmetric gradient's alternating pressure mode (the plate
- *   force changes sign every step and grows) collapsed the time step (two threads:
- *   h = 0.175); with that gradient's own term in the matrix (SELF_TERM) it reaches
- *   h = 0.15. The full sample without the symmetry plane failed the same way as the half
- *   one (1 % at h = 0.232): it is the front, not the plane;
- * - the lid-driven cavity (tests/lua/test_cavity.lua, closed, dx = 1/20), whose passes
- *   left 1-10 % at its corners every step: 5,808 steps to t = 10 -> 810 (the time step is
- *   no longer held down by the density error), 38.1 -> 9.7 pressure-type iterations a
- *   step, RMS against Ghia 0.0118 -> 0.0147 U (the larger step's error; 0.0177 with
- *   SELF_TERM; the test's bound 0.0184), no GMRES fallback any more;
- * - the other five stability cases and the headline squeeze: no descent (the passes reach
- *   density_limit), the same steps to the same figures. */
+ * It is what holds the error under density_limit where the passes' step length is 0: the
+ * rows next to a thin film's free front, off both plates, and the closed cavity's corners
+ * (whose error would otherwise hold the time step down). Where the passes
+ * reach density_limit (the other stability cases, the headline squeeze) it does not run. */
 #define DESCENT_MAX_MOVE 0.05
 static double displace(sph_world *w, const double *dx, const double *dy, const double *d, double alpha);
 static int density_descent(sph_world *w, int K) {
@@ -173,12 +138,9 @@ static int next_wait(int wait, int first, int max) { return wait == 0 ? first : 
 int sph_density_correct(sph_world *w) {
     if (w->par.density_diffusion > 0) diffuse_density(w);
     /* density_correction = "gmres": its directions, then the descent (below) when they
-     * leave the error above density_limit. Measured (session 13, the Bingham thin film of
-     * squeeze_validation, dx = 1/40, GMRES on its own): single steps where its eight
-     * directions left 1.02-1.12 % (next to the symmetry plane, or at the front 1.2 dx below
-     * the upper plate); the film's peak density error spread 0.81-1.15 % over round-off
-     * changes (thread counts, builds, the viscous solve's first guess). With the descent
-     * it is 0.80 % in every one of those runs. */
+     * leave the error above density_limit: its eight directions can leave a step above 1 %
+     * (next to the symmetry plane, or at a film's front), and the descent brings it to the
+     * limit. */
     if (w->par.density_gmres) {
         if (density_gmres(w)) return -1;
         descend_if_above(w);
@@ -193,22 +155,14 @@ int sph_density_correct(sph_world *w) {
      * pass ends the step's passes (the step is the same bit for bit). With density_wait =
      * N > 0, the next N steps (doubling while it recurs, up to 16 N) also take one pass
      * (above density_limit the descent below follows, as after stalled passes); a later
-     * pass that moves resets the wait. (Making the passes density_limit asks for during a
-     * wait cost more at 10^6, 2.13 solves a step and 2,653 ns, and the -O1 film below
-     * failed all the same.) A skipped pass that would have had step
-     * length 0 leaves the step the same; one that would have moved leaves a little more
-     * error. Measured (the paper's squeeze, V = -1, Bn = 5, M = 800, dx = 1/1400, 10^6
-     * particles, steps 21-100 at dt = dx/40): 72 of the 90 second passes had step length 0
-     * (the error left after the first lives in the modes whose wide divergence the compact
-     * Laplacian gets wrong: the odd-even columns next to the free surface), and 3 steps
-     * took three more passes after one, each repeating it. Steps 21-80, one thread: the
-     * default (the repeats ended) 2.93 pressure-type solves a step, 13.3 iterations, 2,798
-     * ns a particle-step (session 15, repeats made: 3.0, 15.3, 2,972); density_wait = 10:
-     * 2.03 solves, 9.6 iterations, 2,488-2,521 ns (three runs); with it the make test
-     * validation cases and the headline squeeze the same to the digit (their later passes
-     * move). Not the default: it changes the stability suite's long thin film (9451 ->
-     * 9445 steps at -O2), and in make check's -O1 build that film then ends with 2
-     * particles inside it flagged as free surface (the suite's check; 0 without the wait). */
+     * pass that moves resets the wait. A skipped pass that would have had step length 0
+     * leaves the step the same; one that would have moved leaves a little more error. At
+     * 10^6 particles most second passes have step length 0 (the error left after the first
+     * lives in the modes whose wide divergence the compact Laplacian gets wrong: the
+     * odd-even columns next to the free surface), and the wait saves about a third of the
+     * pressure-type solves. Not the default: it changes the stability suite's long thin
+     * film, which in make check's -O1 build then ends with particles inside it flagged as
+     * free surface. */
     for (int q = 0; q < SPH_MAX_DENSITY_PASSES; q++) {
         double e = w->st.max_density_error;
         if (q > 0 && e <= w->par.density_tol) break;
@@ -235,29 +189,11 @@ int sph_density_correct(sph_world *w) {
      * (their step length goes to 0 where the displacement's continuity rate is mostly
      * row-to-row noise). First the descent (density_descent, above: it always lowers the
      * error); if that leaves it above density_limit, one GMRES correction (density_gmres)
-     * combines directions instead (the measurements below are from before the descent,
-     * which now leaves the thin film and the cavity under the limit without it). When it
-     * removes less than 5 % of the error (L2) the next fallback waits
-     * FALLBACK_WAIT steps, doubling with each useless one up to FALLBACK_WAIT_MAX; one that
-     * helps resets the wait. Measured (one thread):
-     * - the stability suite's thin film (square sample to h = 0.15, dx = 1/40): without the
-     *   fallback the density error climbed 0.3 % every 20 steps from step 4100 with every
-     *   pass used and the time step collapsed at h = 0.221 (22 %); a fallback at every
-     *   stalled step: h = 0.187 (2369 fallbacks; the error left over the error before 0.43
-     *   at best, median 0.9999: a few corrections do the work); waiting 10 steps after a
-     *   useless one: h = 0.172; with the doubling: h = 0.196. On two threads 0.238 ->
-     *   0.230 (a particle through the upper plate next to the symmetry plane): a small gain
-     *   inside the run-to-run spread of where this film fails, not a cure. Still short of
-     *   0.15: the symmetric gradient's alternating mode next to the symmetry plane (top of
-     *   file) and the stretched lattice of the stagnation zone;
-     * - the lid-driven cavity (Re = 100, dx = 1/20, closed: tests/lua/test_cavity.lua),
-     *   whose passes leave 1-10 % (median 5.4 %) every step, at its corners: a fallback at
-     *   every step doubled its cost (pressure-type iterations a step 36.8 -> 68.3, steps
-     *   5318 -> 6457; RMS against Ghia 0.0157 -> 0.0124); with the doubling wait 38.1
-     *   iterations, 5808 steps, RMS 0.0118;
-     * - the headline squeeze: no fallback, its series bit for bit; the other five
-     *   stability cases: none (the same steps to the same figures); make test's squeeze
-     *   validation: two steps. */
+     * combines directions instead. When it removes less than 5 % of the error (L2) the next
+     * fallback waits FALLBACK_WAIT steps, doubling with each useless one up to
+     * FALLBACK_WAIT_MAX; one that helps resets the wait. A few corrections do the work, and a
+     * fallback at every stalled step would double the cost of a case whose corners no pass
+     * clears (the closed cavity). */
     descend_if_above(w);
     if (lim > 0 && w->st.max_density_error > lim && w->steps >= w->fallback_after) {
         int passes = w->st.density_passes;
@@ -280,12 +216,8 @@ int sph_density_correct(sph_world *w) {
  * the next step, later passes start from zero in a scratch array. The solve stops at
  * density_solve_tol (1e-3), not the pressure's tol (1e-6): the density follows the
  * displacement actually made (continuity of dx, dy, with the least-squares step length),
- * so a looser phi only removes a little less error per pass. Measured: the headline
- * squeeze's pressure-type iterations 16.8 -> 10.7 a step, max density error 0.490 ->
- * 0.487 %, mean plate force per 0.1 of time within 0.8 %; 10^5 particles 21.7 -> 14.3
- * iterations a step, the step 3,549 / 3,576 -> 3,148 / 3,108 ns per particle-step
- * (interleaved pairs, one thread); the stability suite's density criterion holds (0.80 %
- * with density_limit), its wall times 12-25 % shorter. */
+ * so a looser phi only removes a little less error per pass, for a third fewer
+ * pressure-type iterations. */
 /* x += alpha (dx, dy) for fluid, rho += alpha d for interior fluid (d: the continuity
  * change of the whole displacement); returns the max density error left. */
 static double displace(sph_world *w, const double *dx, const double *dy, const double *d, double alpha) {
@@ -337,16 +269,12 @@ static int correction_solve(sph_world *w, double tol, double *f, int diff, doubl
     /* density_gradient: the symmetric form ("auto"'s until its first passes go over to
      * the difference form, and its later passes and GMRES directions always; density_pass)
      * carries phi_i sum_j m_j grad W_ij, which does not vanish where the support is cut
-     * (the free surface) or the particles are disordered (the difference form only within a support
-     * of the free surface did not help at 10^6: 11.6 iterations a step, 0.80 %); at 10^6
-     * particles (the paper's squeeze, steps 21-80 at dt = dx/40) phi is large against its
-     * source and that term decides the direction: the first pass's step length fell to a
-     * mean of 0.31 (1 at 10^4 and 10^5) and the error sat at 0.65-0.79 %. The renormalised
-     * difference form keeps it at 1 (max error 0.48 %, 2.00 solves / 5.5 iterations a step
-     * against 2.95 / 11.4, 2,126 ns a particle-step against 2,683) but worsens the
-     * thin-film validations (Newtonian film 0.153 -> 0.204 at dx = 1/30, under load 0.371
-     * -> 0.652) and the cavity (RMS 0.0233 U), mostly through the longer time step its
-     * lower error allows: an option (docs/api.md). */
+     * (the free surface) or the particles are disordered. At 10^6 particles phi is large
+     * against its source and that term decides the direction: the first pass's step length
+     * falls to about 0.3 and the error stays near density_limit. The renormalised difference
+     * form keeps the step length at 1, but it worsens the thin-film validations and the
+     * cavity, mostly through the longer time step its lower error allows: an option
+     * (docs/api.md). */
     displacement(w, f, diff, dx, dy);
     return 0;
 }
@@ -398,10 +326,8 @@ static int density_pass(sph_world *w, int pass, double *alpha_out) {
      * error left lives in modes the passes cannot reach); a loose solve (relative residual
      * density_probe, from zero) gives its direction's step length first. 0: the pass ends
      * (it would have moved nothing); else the full solve from zero, the pass exactly as
-     * without the probe. Measured agreement at 0.1 (every probe followed by the full
-     * solve): the paper's squeeze at 10^6, 60 of 60; the stability suite's thin film to
-     * h = 0.15, no probe of 0 where the full pass moved in 10,380 passes (at 0.5, 2 of 60
-     * at 10^6). 10^6, steps 21-80: 13.3 -> 11.4 pressure-type iterations a step. */
+     * without the probe. At 0.1 a probe of 0 is one whose full pass moves nothing too, and
+     * at 10^6 particles it saves about a seventh of the pressure-type iterations. */
     if (pass > 0 && w->later_stalled && w->par.density_probe > 0) {
         w->st.density_probes++;
         if (correction_solve(w, w->par.density_probe, f, diff, dx, dy)) return -1;
@@ -419,34 +345,23 @@ static int density_pass(sph_world *w, int pass, double *alpha_out) {
      * the density error, over interior fluid) is the one that leaves the least squared
      * error. A full pass (alpha = 1) can make the error grow: the displacement's divergence
      * is the wide SPH one and the matrix the compact Laplacian, and on the modes where the
-     * first exceeds twice the second each pass amplifies them. Measured, a Newtonian film
-     * started thin (h0 = 0.5, half-width 2, Re = 1, V = 1, dx = 1/40): with full passes the
-     * max error went 0.5 -> 0.6 -> 0.7 -> 1.2 -> 3 -> 22 % over six steps at step 245 and a
-     * particle went through the lower plate at step 250; with the step length it ran to
-     * step 1150 (h = 0.405), where the projection itself went unstable (see the top of
-     * the file). On every stability case but the thin film alpha stays 1: the same
-     * figures to the digit. */
+     * first exceeds twice the second each pass amplifies them (in a film started thin the
+     * error then grows from step to step until a particle goes through a plate). Where
+     * those modes are absent alpha stays 1. */
     double gain, alpha = step_length(w, dx, dy, d, &gain);
     /* density_gradient = "auto" (the default): a step's first pass moves along the
-     * symmetric gradient's direction, as before, until one falls short (step length under
-     * 1); that pass also tries the difference form's direction of the same phi (one
-     * gradient and one divergence sweep, no solve) and moves along the one that lowers the
-     * squared error more. The winner is the next first pass's starting form, and the other
-     * is tried only when it falls short in turn. Where the symmetric form works nothing
-     * changes: at 10^4 and 10^5 particles, the headline squeeze and every squeeze
-     * validation of make test it never falls short (the same runs bit for bit). At 10^6
-     * particles (the paper's squeeze, steps 21-80 at dt = dx/40, one thread) it does from
-     * the start (above), the difference direction wins and keeps winning: every first pass
-     * then moves along it, as with density_gradient = "difference" (docs/performance.md;
-     * measured: 2.95 -> 2.00 pressure-type solves a step, 11.4 -> 5.8 iterations, max error
-     * 0.79 -> 0.50 %). Switching only when the symmetric direction fell short, and back at once
-     * (session 18's first version): 2.07 solves, 9.6 iterations, the first pass's warm start
-     * missing (3-5 iterations against 1-2), as the two forms alternated. Only the first
-     * pass: a later pass whose symmetric direction moves nothing is where the thin films'
-     * error stays above density_tol and holds their time step down, which is what keeps
-     * their force accurate (the difference form everywhere: README.md's *Speed*, session 17,
-     * in git history). The second direction lives in the projection's scratch (ru, rv) and
-     * the later passes' (dp). */
+     * symmetric gradient's direction until one falls short (step length under 1); that pass
+     * also tries the difference form's direction of the same phi (one gradient and one
+     * divergence sweep, no solve) and moves along the one that lowers the squared error
+     * more. The winner is the next first pass's starting form, and the other is tried only
+     * when it falls short in turn: switching back at once makes the two forms alternate and
+     * loses the first pass's warm start. Where the symmetric form works nothing changes (at
+     * 10^4 and 10^5 particles it never falls short); at 10^6 the difference direction wins
+     * from the start and keeps winning (docs/performance.md). Only the first pass: a later
+     * pass whose symmetric direction moves nothing is where the thin films' error stays
+     * above density_tol and holds their time step down, which is what keeps their force
+     * accurate. The second direction lives in the projection's scratch (ru, rv) and the
+     * later passes' (dp). */
     if (auto_first && alpha < 1.0) {
         double *hx = w->ru, *hy = w->rv, *hd = w->dp, gain2;
         displacement(w, f, !diff, hx, hy);
@@ -478,16 +393,8 @@ static int density_pass(sph_world *w, int pass, double *alpha_out) {
  * rate is mostly row-to-row noise (a thin film a few rows across, sheared: the compact
  * Laplacian against the wide divergence) each pass gets step length 0 and the error
  * stays; a combination of two or three directions cancels much of the noise.
- * Measured (Newtonian, Re = 1, V = 1, one thread):
- * - a film started thin (h0 = 0.2, half-width 1.6, a/h 8.4 -> 11) at dx = 1/80, with
- *   the difference-form gradient: max density error 8.6 % at h = 0.17 with the passes
- *   (step length 0 from step 100 on), under 0.8 % with GMRES (581 steps, 5.5 s);
- * - the square sample squeezed to h = 0.15 at dx = 1/40: the passes fail at h = 0.266
- *   (the density error climbs to 30 %, step length 0, then the time step collapses);
- *   GMRES alone holds the error under 0.8 % and reaches h = 0.192, where the symmetric
- *   gradient's alternating pressure mode takes over (the plate force changes sign every
- *   step, growing 1.5 times a step); with the difference-form gradient as well it
- *   reaches h = 0.15.
+ * On a Newtonian film started thin (dx = 1/80) it holds the error under 0.8 % where the
+ * passes, at step length 0, leave 8.6 %.
  * The iterations follow density_passes (at least that many while the error is above
  * density_tol) and density_limit (more, up to SPH_MAX_GMRES, while the error left would
  * still exceed it); density_passes in the stats counts the directions, density_alpha

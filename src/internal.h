@@ -11,9 +11,9 @@
 #define SPH_MAX_MATERIALS 64
 #define SPH_MAX_PLATES 64
 #define SPH_MAX_LOADED 4 /* plates under a load law, coupled implicitly */
-/* C_s: the free surface's stress is explicit (viscous.c, surface_pressure) and stable for
- * dt <= C_s rho h^2 / eta (timestep.c; measured on the Newtonian square at Re = 0.05: smooth
- * up to 3.2, a particle-scale mode of the surface row beyond) */
+/* C_s: the free surface's stress is explicit (viscous.c, surface_pressure), so dt <=
+ * C_s rho h^2 / eta (timestep.c). It is stable to 3.2 rho h^2 / eta (beyond, a particle-scale
+ * mode of the surface row grows); 2 keeps a margin. */
 #define SPH_SURFACE_CS 2.0
 
 typedef struct sph_plate {
@@ -81,10 +81,9 @@ typedef struct sph_smoother {
 /* The hot vectorised loops (the neighbour build's rows, the shifting's kernel sums) compiled
  * twice, for x86-64-v3 (AVX2, FMA) and the build's baseline, the one run chosen when the
  * program loads (GCC 11+ on x86-64 Linux, ifunc; not under AddressSanitizer): the build
- * stays runnable on any x86-64-v2 machine. Measured (session 14, the paper's squeeze at
- * 10^5 particles, one thread, AMD EPYC with AVX-512): the neighbour build 362 -> 292 ns a
- * particle-step, the shifting 152 -> 116, the step -5.6 % (interleaved pairs); the whole
- * build at -march=x86-64-v3 gained no more (the solves' sweeps are bound by memory). */
+ * stays runnable on any x86-64-v2 machine, and those loops run about a fifth faster with
+ * AVX2. The rest of the engine gains nothing from x86-64-v3: the solves' sweeps are bound
+ * by memory. */
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 11 && defined(__linux__) && \
     !defined(__SANITIZE_ADDRESS__)
 #define SPH_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
@@ -468,14 +467,14 @@ int sph_solver_setup_pair(sph_solver *s, const sph_csr *a, const sph_csr *a2, sp
 void sph_guess_weights(const sph_guess *g, int n, double dt, double *a, double *b);
 double *sph_guess_keep(sph_guess *g, int n, double dt);
 /* Two independent systems a1 x1 = b1, a2 x2 = b2 of the same structure (a2 registered by
- * sph_solver_second after the setup for a1), solved side by side: each iteration reads
- * the structure once for both (CG's product and the multigrid cycle). Each system's
- * iterates are those of sph_solver_pcg on it alone (the same arithmetic, bit for bit).
- * res[0], res[1]: the two results. */
+ * sph_solver_setup_pair, or by sph_solver_second after the setup for a1), solved side by
+ * side: each iteration reads the structure once for both (CG's product and the multigrid
+ * cycle). Each system's iterates are those of sph_solver_pcg on it alone (the same
+ * arithmetic, bit for bit). res[0], res[1]: the two results. */
 void sph_solver_pcg2(sph_solver *s, const sph_csr *a1, const sph_csr *a2, const double *b1, const double *b2,
                      double *x1, double *x2, double tol, int max_iter, int threads, sph_solve_result res[2]);
 /* Preconditioned conjugate gradients for SPD a: x holds the initial guess. The
- * preconditioner is the AMG V-cycle when the last sph_solver_setup was for a with AMG,
+ * preconditioner is the AMG cycle when the last sph_solver_setup was for a with AMG,
  * Jacobi otherwise. */
 sph_solve_result sph_solver_pcg(sph_solver *s, const sph_csr *a, const double *b, double *x,
                                 double tol, int max_iter, int threads);
@@ -505,8 +504,7 @@ int sph_amg_reuse(sph_amg *g, const sph_csr *a, const sph_csr *a2, const int *ro
 int sph_amg_set_ids(sph_amg *g, int n, const int *row_of, const int *id);
 /* Exchange the setup-only scratch of two hierarchies (the finest level's merged copy of the
  * matrix, the products' buffers, the aggregation's arrays): the two systems' hierarchies
- * share one set (10^5 particles: peak memory 435 -> 376 MB; 290 MB before the second
- * hierarchy and the smoother copies). */
+ * share one set, which saves about an eighth of the peak memory. */
 void sph_amg_swap_scratch(sph_amg *a, sph_amg *b);
 /* The finest level's smoother takes a's values (same structure as at the setup). */
 int sph_amg_refresh(sph_amg *g, const sph_csr *a, int threads);

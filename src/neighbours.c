@@ -315,19 +315,12 @@ static SPH_CLONES void fill_row(sph_world *w, int i, int ki, int *cls, int *kf_,
  * candidate indices of the fluid neighbours to one list and of the walls to another (the
  * order met); (3) one loop over the neighbours, fluid first, computes the kernel gradient of
  * every pair from the cell-order positions.
- * It was one compaction loop writing j, dx, dy and r^2 of every candidate (a rejected one
- * to a spare slot): 4 stores and the tests, not vectorised, for each of ~137 candidates a
- * particle (the 3 x 3 cells of the support's size) of which ~25 are kept. The lists are bit
- * for bit the same. Measured on the squeeze (Bn = 5, M = 800, Re = 1) at 1.05e5
- * particles, 2.66e6 pairs, 1 thread, the build alone (a micro-benchmark calling it 15 times
- * on the world of step 4; the best of 5 interleaved medians, machine shared and loaded):
- * 37.5 -> 32.9 ms (14 -> 12.4 ns a pair). Now ~50 % of the fill pass is the kernel loop
- * (a square root and a division a pair), ~27 % the compaction, ~11 % the vectorised
- * distance tests; the count pass is ~13 % of the build. Not done: one pass instead of two
- * (filling per-thread buffers then copying them writes the 28 bytes a pair twice, which
- * costs about what the count pass does), half-size cells (5 x 5 minus the corners: ~80
- * candidates instead of 137, but a different order of the pairs, so round-off changes
- * everywhere). */
+ * Of ~137 candidates a particle (the 3 x 3 cells of the support's size) ~25 are kept, so
+ * the tests are vectorised and only the kept ones are written. The fill pass's time is about
+ * half the kernel loop (a square root and a division a pair); the count pass is ~13 % of the
+ * build, about what a single pass into per-thread buffers would spend writing the 28 bytes
+ * a pair twice. Half-size cells (5 x 5 minus the corners: ~80 candidates) would change the
+ * order of the pairs, and so the round-off everywhere. */
 int sph_neighbours_build(sph_world *w) {
     if (bin_all(w)) return -1;
     mark_rows(w);

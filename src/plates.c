@@ -2,12 +2,12 @@
  * fixed or moving along one axis under a velocity law or a load law. No-slip follows
  * Morris, Fox & Zhu (1997): a wall particle B seen from fluid particle a carries the
  * velocity u_B = u_w - (d_B / d_a)(u_a - u_w), so u_a - u_B = beta (u_a - u_w) with
- * beta = 1 + d_B / d_a. Morris clamps beta at 1.5; that clamp makes every wall row but
- * none look like a half-slip wall (measured: Couette start-up error 0.024 U at dx = 1/20,
- * an effective slip length of about 0.4 dx in the squeeze). Here d_a is instead floored at
- * dx / 2, the lattice distance of the first fluid row, which keeps the extrapolation exact
- * for every wall row (beta up to 6 with three rows) and bounded when a particle comes
- * close to the wall (Couette error 0.0028 U at dx = 1/20). */
+ * beta = 1 + d_B / d_a. Morris clamps beta at 1.5; that clamp, which binds for every wall
+ * row, makes the wall a half-slip one (an effective slip length of about 0.4 dx in the
+ * squeeze, ten times the Couette start-up error). Here d_a is instead floored at dx / 2,
+ * the lattice distance of the first fluid row, which keeps the extrapolation exact for
+ * every wall row (beta up to 6 with three rows) and bounded when a particle comes close to
+ * the wall. */
 #include "internal.h"
 #include "kernel.h"
 
@@ -125,9 +125,8 @@ void sph_plate_wall_velocity(const sph_world *w, int b, double *vx, double *vy) 
 /* The plate's rigid velocity alone, without the slide: what the pressure source and the
  * continuity see. A slide is tangential to the face, so on a flat face its divergence
  * vanishes by symmetry, but where a sliding lid meets a fixed wall the kernel sums see a
- * velocity jump along the face: with the slide in the source (measured, cavity at
- * dx = 1/20) the corner particles were driven into the corners at 1.6 U within 10 steps
- * and the flow under the lid ran backwards. */
+ * velocity jump along the face: with the slide in the source the cavity's corner particles
+ * are driven into the corners and the flow under the lid runs backwards. */
 void sph_plate_rigid_velocity(const sph_world *w, int b, double *vx, double *vy) {
     const sph_plate *pl = &w->plates[w->kind[b]];
     *vx = *vy = 0.0;
@@ -181,16 +180,13 @@ void sph_plate_move(sph_world *w, int k, double dpos) {
 /* Contact of free-surface particles with the plates. A free-surface particle is held at
  * p = 0, and the walls next to free-surface particles alone are no pressure unknowns
  * (pressure.c, mark_unknowns), so nothing in the pressure keeps it off a wall: a drop or a
- * sheet of spray that reaches a plate went through it. Such a particle is kept at least
+ * sheet of spray that reaches a plate would go through it. Such a particle is kept at least
  * CONTACT_MIN dx off the plate's rectangle, on the side it came from, and its velocity
  * relative to the plate loses the component into the plate (an inelastic contact). Particles
  * off the free surface are left to the pressure: one that ends a step inside a plate stops
- * the run (sph_plate_check_escape). Measured: a drop of 3 x 3 particles (mu = 1e-3,
- * g = 10) fell through a plate at step 39; the stability suite's Re = 1000 with the
- * solid-wall cone test tried in session 12 left a sheet particle 0.02 dx from the upper
- * plate's face, overrun at step 1313. In the six suite cases at their defaults no fluid
- * particle came closer than 0.19 dx to a face (0.22-0.31 dx off the free surface), so at
- * 0.1 dx the contact touches none of them. w->st.wall_contacts counts the contacts. */
+ * the run (sph_plate_check_escape). In the stability suite's cases no fluid particle comes
+ * closer than about 0.2 dx to a face, so at 0.1 dx the contact touches none of them.
+ * w->st.wall_contacts counts the contacts. */
 #define CONTACT_MIN 0.1
 
 static void closest_on_rect(const double *R, double x, double y, double *cx, double *cy) {

@@ -237,8 +237,8 @@ static int draw_particles(const sph_render_spec *s, const sph_render_frame *f, c
         order[start[group[i]]++] = i;
     /* start[g] now holds the end of group g; the beginning is the previous end */
     /* One path and one fill per colour, in batches: cairo's rasterizer costs more than
-       linearly in the size of one path (100 000 discs in two paths: 340 ms; in batches of
-       BATCH: 80 ms, measured with tests/bench/bench_render.c), so a large group is filled
+       linearly in the size of one path (100 000 discs fill four times faster in batches of
+       BATCH than in two paths: tests/bench/bench_render.c), so a large group is filled
        every BATCH particles. Same colour, so the picture is the same. */
     for (g = 0; g < ngroups; g++) {
         size_t a = g ? start[g - 1] : 0, b = start[g], k;

@@ -6,23 +6,16 @@
  * divergence below surface_div + 0.3) only the component tangent to the surface is kept,
  * so shifting never moves the surface itself. The surface normal is that of the plain
  * kernel sum, n = sum_j V_j grad W_ij / |...|, not grad C: with the anti-clustering term in
- * it, a surface particle's "normal" pointed at the particle crowding it, and removing that
- * component removed the very push that parts them. Clumps of 3-4 surface particles within
- * 0.1 dx then sat at the contact lines and hid exposed edge particles from the free-surface
- * test; with the plain normal the stability suite's Bn = 100 load and Re = 0.01 cases miss
- * none (1 each before), Re = 1000 still one (a particle with a spray particle 1.6 dx in
- * front of it), M = 1e4 and the paper's case unchanged in outcome.
+ * it, a surface particle's "normal" points at the particle crowding it, and removing that
+ * component removes the very push that parts them (clumps of surface particles then sit at
+ * the contact lines and hide exposed edge particles from the free-surface test).
  * The velocity is carried to the new position by a first-order Taylor step,
  * u_i += (dr_i . grad) u_i.
  * The R term (Lind et al. 2012, R = 0.2) pushes apart pairs closer than dx. Without it a
  * lattice stretched by the squeeze's extension stays uniform in concentration (grad C = 0)
- * while its columns part: at h = 0.63 (Newtonian, Re = 1, dx = 1/40) a void opened on the
- * mid-plane, 20 particles inside it were taken for free surface, the plate force fell from
- * 16 to 10 and the max density error reached 8 %; with it, 0.86 % at worst to h = 0.34.
- * Not here: a minimum-distance push (pairs closer than dx/2 parted), tried against four
- * free-surface particles that had met within 0.01 dx at a contact line (Re = 0.01, where
- * p = 0 and grad W(0) = 0 never part them); it put a particle through the lower plate at the
- * contact line of the Newtonian squeeze (Re = 1, t = 0.66). */
+ * while its columns part, and a void opens on the mid-plane whose edges are taken for free
+ * surface. A minimum-distance push (pairs closer than dx/2 parted) is not used: it puts
+ * particles through the plates at the contact lines. */
 #include "internal.h"
 #include "kernel.h"
 
@@ -66,9 +59,9 @@ void sph_shifting_apply(sph_world *w, double dt) {
     }
     umax = sqrt(umax);
     /* The shifting is an explicit Fickian diffusion step: its coefficient must stay below a
-     * fraction of h^2 per step or the particle distribution itself goes unstable (measured:
-     * Newtonian squeeze, dt = 2e-3, D = 2.1 h^2 blows up in 20 steps; 0.5 h^2 and below
-     * run clean). With the implicit viscous step dt is large enough to reach the cap. */
+     * fraction of h^2 per step or the particle distribution itself goes unstable (a
+     * Newtonian squeeze blows up at D = 2.1 h^2 and runs clean at 0.5 h^2); h^2 / 4 keeps a
+     * margin. With the implicit viscous step dt is large enough to reach the cap. */
     double D = fmin(A * h * umax * dt, 0.25 * h * h), cap = 0.1 * h;
     if (D <= 0) return;
     /* anti-clustering (Lind et al. 2012): pairs closer than dx count more, R = 0.2, n = 4 */

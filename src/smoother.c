@@ -3,7 +3,7 @@
  * offsets, and the forward / backward sweeps and residuals on one or two systems (the
  * viscous u and v) at once. */
 /* Code placement: the hot loops on 64-byte boundaries (amg.c says why: the sweeps' speed
- * moved with where their loops fall by up to 12 %). GCC only. */
+ * moves with where their loops fall by up to 12 %). GCC only. */
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC optimize("align-loops=64", "align-functions=64")
 #endif
@@ -37,31 +37,10 @@
  *     a row's neighbours are a few rows of cells away), int32 otherwise: 6 bytes a nonzero
  *     instead of 12.
  * The copy is made at setup from the matrix of then (and by sph_amg_refresh / reuse).
- * Measured at 10^5 particles (squeeze, 1 thread, medians of 3 interleaved runs on a loaded
- * machine): the two-read split with float values made the solves ~15 % faster; the
- * 16-bit offsets and the copy on the coarse levels too: the cycle 5.25 -> 4.53 ms (medians
- * of 5, a 102,400-row SPH-like stencil, 1 thread; the same iteration counts in the unit
- * tests). Tried and dropped: four partial sums
- * in the row products (to break the chain of dependent additions): no change in the
- * product's 0.5 ns a nonzero (the rows overlap in the processor already). */
-/* Measured and not kept (session 7): a Chebyshev smoother on the finest level in place of
- * Gauss-Seidel (the polynomial in D^-1 A of Saad's Algorithm 12.1 on [beta / ratio, beta],
- * beta the Gershgorin bound of the copy's D^-1 A; from x = 0 before the coarse correction and
- * the same polynomial on the residual after it, so the cycle stays symmetric; its sweeps are
- * products on this copy, fused with the vector updates; degree k costs 2k products a cycle
- * against Gauss-Seidel's two sweeps). The premise was a Gauss-Seidel sweep bound by its
- * recurrence at ~2 ns a nonzero; measured on the unit test's SPH-like stencil (102,400 rows,
- * 2.54e6 nonzeros, 1 thread, medians of 15) it is not: the forward sweep on L with the
- * residual -U x 1.34 ms (0.53 ns a nonzero), the backward sweep 1.12 ms (0.44 ns), a product
- * on this copy 0.55 ns and CG's double CSR product 0.55 ns a nonzero. Each solve of the
- * squeeze at 10^5 particles (Bn = 5, M = 800, Re = 1, V = -1, dx = 1/450, steps 4-11) run
- * with both smoothers in one process, order alternating: CG iterations per pressure-type
- * solve and per viscous pair, Gauss-Seidel -> Chebyshev, and the Chebyshev solve's time over
- * Gauss-Seidel's: degree 2, ratio 4: 5.3 -> 5.3 and 14.6 -> 14.0, x1.51 and x1.52; degree 2,
- * ratio 2.5: 5.3 -> 5.2, 14.6 -> 14.4, x1.52, x1.65; degree 3, ratio 4: 5.3 -> 4.8,
- * 14.6 -> 12.7, x1.82, x1.94; degree 1 (damped Jacobi, omega 0.8): 5.3 -> 6.1, 15.1 -> 17.9,
- * x1.13, x1.19; omega 2/3: 6.5, 19.1, x1.19, x1.29. With the same iterations the polynomial
- * costs twice the sweeps: no gain at any degree. (beta is 2 on the stencil: a zero row sum.) */
+ * Together the three take about a quarter off the solves' time at 10^5 particles. */
+/* Gauss-Seidel, not a polynomial (Chebyshev) smoother: a sweep on this copy is not bound by
+ * its recurrence (about 0.5 ns a nonzero, as a product), and a Chebyshev smoother that
+ * reaches the same iterations costs twice the sweeps. */
 #if defined(__GNUC__)
 #define SMOOTHER_LIKELY(c) __builtin_expect(!!(c), 1)
 #define SMOOTHER_NOINLINE __attribute__((noinline))
@@ -124,11 +103,8 @@ static inline int split_rows(sph_smoother *S, const sph_csr *a, const sph_csr *a
         }
         /* the diagonal's slots between L and U: zeros (column i), so that the backward sweep
          * and the residual run over the row as one range (one loop exit a row instead of
-         * two; s - 0 x_i = s: the same figures bit for bit). On the unit test's stencil with
-         * a quarter of the entries dropped at random (row lengths that vary as the SPH
-         * neighbour counts do) the backward sweep 2.15 -> 1.52 ms; at 10^5 particles
-         * (squeeze, each solve run both ways in one process) only x0.99 on the pressure-type
-         * solves and x0.96-0.99 on the viscous pairs. */
+         * two, which counts where row lengths vary as the SPH neighbour counts do;
+         * s - 0 x_i = s: the same figures bit for bit). */
         for (int e = el; e < eu; e++) {
             if (f16) fofs[e] = 0;
             else fcol[e] = i;
@@ -151,15 +127,11 @@ static int split_block(sph_smoother *S, const sph_csr *a, const sph_csr *a2, int
 }
 
 /* Fill the split copy; columns as int16 offsets j - i when all fit (the rows are in cell
- * order, so a row's neighbours are within a few rows of cells of it), else as int32.
- * Measured on the unit test's SPH-like stencil (102,400 rows, 2.54e6 nonzeros, 1 thread,
- * caches flushed before each call, medians of 15, the copy bit for bit the same): 5.9 -> 4.9
- * ms (2.35 -> 1.93 ns a nonzero) with the column format a constant in each loop, no
- * parallel region for one block, and the rounding toward zero done by dropping the mantissa
- * bits a float does not hold (it was: round to nearest, compare, step back). The copies were
- * a third of the viscous setup at 10^5 particles (the fine level's, the v component's, the
- * pressure hierarchy's at each reuse). Without the range test in to_float0 (the drop alone,
- * not toward zero for tiny values, infinite for huge ones) 4.1 ms: not taken. */
+ * order, so a row's neighbours are within a few rows of cells of it), else as int32. The
+ * copies are a third of the viscous setup at 10^5 particles (the fine level's, the v
+ * component's, the pressure hierarchy's at each reuse), hence the column format a constant
+ * in each loop, no parallel region for one block, and the rounding toward zero done by
+ * dropping the mantissa bits a float does not hold (to_float0). */
 static int split_fill(sph_smoother *S, const sph_csr *a, const sph_csr *a2, int threads, int nb, int f16,
                       float *fval, double *fdinv) {
     int n = a->n, ovf = 0;

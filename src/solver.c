@@ -1,5 +1,5 @@
 /* Sparse linear algebra: a CSR matrix and preconditioned conjugate gradients, the
- * preconditioner Jacobi or the algebraic multigrid V-cycle of amg.c.
+ * preconditioner Jacobi or the algebraic multigrid cycle of amg.c.
  * The solver has a contract (SPlisHSPlasH style): tolerance and iteration limit in,
  * iterations, residual and convergence out; it never fails silently. */
 #include "internal.h"
@@ -117,38 +117,20 @@ static sph_amg *slot_for(sph_solver *s, const sph_csr *a) {
     return &s->amg;
 }
 
-/* Reuse across steps (sph_solver_setup_reuse, the pressure system). The pressure matrix
- * depends on the particles' positions only, which move a fraction of dx a step, so the
+/* Reuse across steps (sph_solver_setup_reuse, the pressure system; sph_solver_setup_pair
+ * with row_of and id, the viscous pair). The particles move a fraction of dx a step, so the
  * hierarchy of an earlier step (its aggregates, prolongation and coarse operators; the
- * prolongation's rows follow their particles by id) stays a good preconditioner: squeeze
- * Bn = 5, M = 800, Re = 1 at 10^5 particles, pressure + density-correction iterations a
- * step 12-13 with a setup every step, 13-14 with the hierarchy of 33 steps before; the
- * setup went from 52 to 6.4 ms a step, the solves from 106 to 121 ms (medians of 3, idle
- * machine; the extra iteration and the stale coarse grids), the step 3.62 -> 3.40 us per
- * particle. A hierarchy is rebuilt when it is REUSE_MAX_AGE steps old, when the first solve
- * after the last reuse took more than REUSE_SLACK iterations above the first solve after
- * the last setup, or when the row count changed by more than REUSE_MAX_CHANGE of it.
- * The viscous matrix is not reused: its values follow the apparent viscosity, which
- * changes by large factors from one step to the next where the material yields (the same
- * run: 10 viscous iterations a step with a setup every step, 44 with the hierarchy of the
- * step before). Tried and dropped for it: keeping the aggregates and prolongations (moved
- * by id) and recomputing only the coarse operators from the new values: 11 iterations a
- * step instead of 10 with the hierarchy of up to 20 steps before, setup 76 -> 56 ms but
- * solves 116 -> 131 ms a step (loaded machine, 3 interleaved runs): no net gain. Not tried,
- * from the setup's parts (amg.c, spgemm): a numeric-only re-setup (the aggregates and the
- * strong graph kept, the prolongation's weights and the Galerkin products recomputed into
- * the old patterns) saves at most the strength and aggregation passes, ~9 % of the
- * viscous setup (4-5 ms a step at 1e5 rows): the products and the smoothers' copies, ~65 %,
- * are redone either way, and the fine matrix's pattern changes every step (the neighbour
- * lists), so A P's pattern cannot be kept.
- * Session 12 measured the reuse again, this time through sph_solver_setup_reuse's own rules
- * (the pair's finest smoothers rebuilt from both components' new values, a rebuild when the
- * first solve after a reuse takes more than REUSE_SLACK iterations over a fresh one): at
- * 10^5 particles, 40 steps after 20, the same squeeze 13.9 -> 15.2 viscous iterations a
- * step and 3,073 / 2,995 -> 2,668 / 2,582 ns per particle-step (-13 %; Newtonian Re = 1:
- * viscous setup 567 -> 149 ns a particle, 9.18 -> 9.32 iterations, the step -8 %, the plate
- * force the same to 4 digits). Kept since session 13 (viscous.c passes row_of and id to
- * sph_solver_setup_pair), once the surface flags no longer hung on round-off. */
+ * prolongation's rows follow their particles by id) stays a good preconditioner: about one
+ * iteration a solve more, for most of a setup's time saved. The finest level's smoother
+ * always takes the current values (the viscous pair's: both components'): the viscous values
+ * follow the apparent viscosity, which changes by large factors from one step to the next
+ * where the material yields, and with the last step's smoother the viscous solves take four
+ * times the iterations. A hierarchy is rebuilt when it is REUSE_MAX_AGE steps old, when the
+ * first solve after the last reuse took more than REUSE_SLACK iterations above the first
+ * solve after the last setup, or when the row count changed by more than REUSE_MAX_CHANGE of
+ * it. Redoing only the numeric part of a setup (the aggregates kept) would save little: the
+ * Galerkin products and the smoothers' copies are most of it, and the fine matrix's pattern
+ * changes every step (the neighbour lists). */
 #define REUSE_MAX_AGE 20
 #define REUSE_SLACK 1
 #define REUSE_MAX_CHANGE 0.05
@@ -202,22 +184,18 @@ int sph_solver_setup_reuse(sph_solver *s, const sph_csr *a, sph_linear_solver ki
     return setup(s, a, 0, kind, threads, row_of, id);
 }
 
-/* The viscous u and v systems: the second copy of the finest matrix was a pass of its own
- * (sph_solver_second, ~10 % of the viscous setup at 10^5 particles; amg.c,
- * sph_amg_setup_pair: 13.0 -> 8.3 ms for both copies at 10^5 rows). */
+/* The viscous u and v systems: one setup for both, the finest smoother's two copies made
+ * in one pass (amg.c, sph_amg_setup_pair), a third faster than sph_solver_second after the
+ * setup. */
 int sph_solver_setup_pair(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_solver kind, int threads,
                           const int *row_of, const int *id) {
     return setup(s, a, a2, kind, threads, row_of, id);
 }
 
 /* The viscous systems take a V-cycle. Their diagonal (rho / dt, scaled by mass) dominates,
- * and the W-cycle's second visits of the coarse levels buy nothing there: measured at 10^5
- * particles (squeeze Bn = 5, M = 800, Re = 1, V = -1, dx = 1/450, steps 1-11, each viscous
- * pair solved with both cycles in one process, order alternating, medians not needed: the
- * sums over 11 pairs), CG iterations per pair 14.64 (W) -> 14.73 (V), the pair's solve time
- * x0.925 / x0.933 (two runs; W from level 2 x0.917, from level 3 x0.917, the same 14.73).
- * The pressure systems keep the W-cycle: there the V-cycle took 5.20 -> 6.73 iterations a
- * solve, x1.14 the time (W from level 2: 6.17, x1.07). */
+ * and the W-cycle's second visits of the coarse levels buy nothing there: the V-cycle takes
+ * the same iterations in 7 % less time. The pressure systems keep the W-cycle: with the
+ * V-cycle they take about 30 % more iterations and 14 % more time. */
 void sph_solver_vcycle(sph_solver *s, const sph_csr *a) {
     if (s->amg_for == a && s->cur) s->cur->wcycle_from = SPH_AMG_MAX_LEVELS;
 }
@@ -239,9 +217,8 @@ static double dot(const double *a, const double *b, int n, int threads) {
 }
 
 /* y = a x and x . y in one pass (CG's product and its dot product d . q: the same sums
- * as sph_csr_matvec and dot, in the same order). With the arrays in locals, one CG
- * iteration on the viscous system at 1.01e5 rows (AMG, 1 thread) 7.88 -> 7.28 ms
- * (medians of 5 interleaved runs, shared machine). */
+ * as sph_csr_matvec and dot, in the same order). The arrays are in locals, so they are not
+ * reloaded after each store to y (8 % off a CG iteration). */
 static double matvec_dot(const sph_csr *a, const double *x, double *y, int threads) {
     int n = a->n;
     const int *st = a->start, *col = a->col;
@@ -351,11 +328,7 @@ int sph_solver_second(sph_solver *s, const sph_csr *a, const sph_csr *a2, int th
  * systems in one pass while both iterate, one alone once the other has stopped.
  * The cycle's sweeps are bound by the instructions per nonzero more than by memory: the
  * two systems in one loop share the column loads and the loop, and their two chains of
- * additions overlap. Measured on the squeeze's viscous systems (u and v at step 4, Bn = 5,
- * M = 800, Re = 1, 1.01e5 rows, from zero: 6 and 10 iterations; a micro-benchmark timing
- * both ways alternately in one process, medians of 11, machine shared): the pair's solves
- * 89.6 / 95.1 / 104.4 ms side by side against 115.8 / 120.8 / 127.4 ms in turn (three
- * runs), -21 %; on 2 threads 86.9 against 105.1 ms. */
+ * additions overlap, which takes about a fifth off the pair's solve time. */
 typedef struct pcg_state {
     const sph_csr *a;
     const double *b;

@@ -6,8 +6,8 @@
  * hierarchy"). The file is for the same build (raw structs, checked by a header of
  * sizes): a restart on this machine, not an exchange format. Ghosts and neighbour lists
  * are rebuilt by the next step; a continued run is the uninterrupted one bit for bit (on
- * the same thread count). Before SPHSTAT6 the solver state was not saved: a continued run
- * then differed by up to 5e-5 in a loaded plate's force. */
+ * the same thread count), which is why the solves' state is saved: without it a continued
+ * run differs (by up to 5e-5 in a loaded plate's force). */
 #include "internal.h"
 #include "atomic.h"
 

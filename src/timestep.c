@@ -1,7 +1,7 @@
 /* Adaptive time step (PHYSICS.md):
  *   dt = min(C_u h / max|u|, C_eta rho h^2 / max eta (explicit viscosity only),
- *            C_f sqrt(h / max|a|), dt_max), and at most 25 % more than the last step;
- * then the density-error control below.
+ *            C_f sqrt(h / max|a|), C_s h^2 / max nu on a traction-free surface, dt_max),
+ * and at most 25 % more than the last step; then the density-error control below.
  * Plate speeds and accelerations count, so a plate driven into a fluid at rest sets the
  * first step. */
 #include "internal.h"
@@ -48,13 +48,11 @@ double sph_timestep_compute(sph_world *w) {
         dt = fmin(dt, P->cvisc * rhomin * h * h / etamax);
     /* The free surface's stress is explicit (its pressure is the viscous solution's
      * n . tau . n): a particle-scale mode of the surface row grows beyond dt ~ 3 rho h^2 /
-     * eta (measured, Newtonian square, Re = 0.05: smooth at dt = 1e-4 / 2.5e-5 at dx = 1/40
-     * / 1/80, the force's step-to-step spread 0.3-1.6 of its mean at 1.5e-4 / 5e-5). */
+     * eta (SPH_SURFACE_CS, internal.h). */
     if (nus > 0) dt = fmin(dt, SPH_SURFACE_CS * h * h / nus);
     if (P->dt_max > 0) dt = fmin(dt, P->dt_max);
     /* The density error each step leaves (mostly near a free surface, where the
-     * projection is least exact) grows with dt (measured, Newtonian squeeze at Re = 10,
-     * dx = 1/40, implicit: 1.1, 1.9, 3.5 % at dt = 5e-4, 1e-3, 2e-3). So dt also follows
+     * projection is least exact) grows with dt, about in proportion. So dt also follows
      * the density error: while it exceeds density_tol, dt shrinks in proportion, down to a
      * twentieth of the other limits (an error that does not come from dt must not stall
      * the run). With implicit viscosity the first step, which may start a plate
@@ -68,15 +66,11 @@ double sph_timestep_compute(sph_world *w) {
     /* dt_growth = "eased" (P->dt_eased): up to 25 % more a step while the density error is
      * under half of density_tol, then less and less, none from 95 % of it up. With the
      * default, 25 % a step up to the tolerance, the error (which accumulates, so answers dt
-     * a few steps late) overshoots it and dt saw-tooths: at 10^5 particles (the paper's
-     * squeeze Bn = 5, M = 800, Re = 1, V = -1, dx = 1/450, one thread, t = 0.9e-3 .. 9e-3)
-     * from 0.076 to 0.0105 dx in 12 steps, 3.02 pressure-type solves and 12.0 viscous
-     * iterations a step (the second density pass nearly every step, the solves' first
-     * guesses off), 3,207 ns a particle-step, max density error 0.76 %; eased: 2.00 solves,
-     * 4.0 viscous iterations, 1,911 ns, max error 0.48 %, the run 21 % faster. Not the
-     * default: small runs take up to twice the steps (the headline squeeze at 800
-     * particles 456 -> 979, 1.0 -> 1.9 s), where a step with the second pass costs little
-     * more, and the validation errors move (docs/performance.md). */
+     * a few steps late) overshoots it and dt saw-tooths, with the second density pass nearly
+     * every step and the solves' first guesses off; eased, a run of 10^5 particles takes
+     * about a fifth less time. Not the default: small runs take up to twice the steps, where
+     * a step with the second pass costs little more, and the validation errors move
+     * (docs/performance.md). */
     if (w->dt_prev > 0) {
         double grow = 1.25;
         if (P->dt_eased && P->density_tol > 0) {

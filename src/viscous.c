@@ -82,15 +82,13 @@ void sph_viscous_rheology(sph_world *w) {
 /* The free surface is traction-free, sigma . n = 0 with sigma = -p I + tau (PHYSICS.md): its
  * normal part holds a free-surface particle at p = n . tau . n = -2 mu e, e the surface
  * stretching of (u, v) = u* before the pressure predictor's term is taken back
- * (sph_viscous_implicit), the viscous solution under the predicted pressure. Measured on
- * the square at Re = 0.05 started from the FE field (dx = 1/40, 40 steps): p along the side
- * 1.73-1.76 against 1.68-1.72 in FE. Not the particle's normal rate, which holds its own
- * velocity (its pressure then drove it: that run diverged), nor u* after the take-back (it
- * holds + dt grad p~ / rho). Newtonian only (sph_surface_traction): a viscoplastic
- * surface's n . tau . n is +-tau0 by the sign of e, which flipped particle to particle with
- * the surface rows' velocity noise (Bingham square, Bn = 10 and 1000: the plate force's
- * standard deviation 0.3-0.5 of its mean); carrying only its viscous part moved the Bingham
- * square's force 0.52 -> 0.65 of FE but the Bn = 100 squeeze's time error 0.023 -> 0.035. */
+ * (sph_viscous_implicit), the viscous solution under the predicted pressure (on the square
+ * at Re = 0.05 it gives the side pressure of FE within 3 %). Not the particle's normal rate,
+ * which holds its own velocity (its pressure then drives it, and the run diverges), nor u*
+ * after the take-back (it holds + dt grad p~ / rho). Newtonian only (sph_surface_traction):
+ * a viscoplastic surface's n . tau . n is +-tau0 by the sign of e, which flips particle to
+ * particle with the surface rows' velocity noise and gives the plate force a standard
+ * deviation of a third to a half of its mean (docs/limitations.md). */
 static void surface_pressure(sph_world *w, const double *u, const double *v) {
     int n = w->n;
 #pragma omp parallel for schedule(static) num_threads(w->threads)
@@ -113,11 +111,11 @@ static void surface_pressure(sph_world *w, const double *u, const double *v) {
  * truncated support the symmetric pressure gradient pushes a particle out by 2 p |g| / rho
  * (g = sum_j V_j grad W_ij) and the Morris sum pulls it in by 2 |g| eta du/dn / rho, the flux
  * of div eta grad u (half-plane moments): the traction-free p = n . tau . n = 2 eta du_n/dn
- * balances that pull only with this term's 2 |g| eta grad(u . n) / rho (measured on the
- * square at Re = 0.05 from the FE field, dx = 1/40: without it the surface row ran outwards
- * at 1.7 times the FE speed). Elsewhere it is zero for constant eta (div u = 0), so it is
- * taken only within a support of the free surface: in the closed cavity the kernel sums'
- * noise alone moved the error against Ghia 0.018 -> 0.022. With surface_pressure (Newtonian,
+ * balances that pull only with this term's 2 |g| eta grad(u . n) / rho; without it the
+ * surface row runs outwards too fast (1.7 times FE's speed on the square at Re = 0.05).
+ * Away from it the term is zero for constant eta (div u = 0), so it is taken only within a
+ * support of the free surface; taken everywhere it adds only the kernel sums' noise (the
+ * closed cavity's error against Ghia grows by a fifth). With surface_pressure (Newtonian,
  * the symmetric pressure gradient, whose push it balances). Walls carry T_i (the gradient
  * continued into the plate): no boundary term there. Images: T_ab times s_a s_b. */
 static void transpose_accel(const sph_world *w, int i, double *ax, double *ay) {
@@ -174,28 +172,19 @@ static inline double plate_pull(const sph_world *w, int i, int j, double cw, dou
 /* wall = "curved": the Morris wall velocity u_B = u_w - (d_B / d_A)(u_A - u_w) is the linear
  * extrapolation of fluid particle A's through the wall face; a profile u = u_w + tau n +
  * kappa n^2 / 2 continues to u_w - tau d_B + kappa d_B^2 / 2 at B, kappa d_B (d_A + d_B) / 2
- * above the linear value, so the wall drags too little wherever the profile is curved:
- * measured, steady body-force Poiseuille in a channel of 7 / 14 / 28 rows carried 5.6 /
- * 1.9 / 0.9 % too much flux (an effective slip of about 0.065 dx). The curvature is taken
- * from the momentum balance at A, eta kappa = rho (a - a_p - g) (a the last step's
- * acceleration, a_p = -grad p~ / rho the pressure predictor's), and the wall term gains
- * -c_base kappa d_B (d_A + d_B) / 2 (wall_coeff_curved returns c = beta c_base and that
- * factor, f = c_base d_B (d_A + d_B) / 2), explicit in the implicit step, for the velocity
- * component tangent to the face only, where A lies over the plate's face (not at its ends:
- * a moving periodic plate's image ends took the normal component there and a Couette
- * start-up particle went through the plate), and not at the first step (no acceleration
- * yet): the pair's acceleration is c (u_A - u_w) - f kappa.
- * Measured with it: the 7 / 14 / 28-row channel 1.0166 / 1.0088 / 1.0068 (tests/lua/
- * test_walls.lua); the Newtonian film started thin (thin-film options) 0.1054 / 0.0938 /
- * 0.0890 / 0.0886 against lubrication at 1/30 .. 1/80 (0.1475 / 0.1217 / 0.1102 / 0.0861
- * linear); the Bingham one 1.083 / 1.021 / 0.976 / 0.963 x theory (1.012 / 0.997 / 0.962 /
- * 0.954); the default square squeeze barely moves (Newtonian V = 1 at 1/20, 1/30: 0.236,
- * 0.215 against 0.230, 0.217). Not
- * the default: the balance eta kappa = rho (a - a_p - g) is the Newtonian one (a
- * generalized Newtonian fluid's also has grad eta . grad u: the Bingham Poiseuille plug
- * came out 3.0 % low at dx = 1/40), and as the default it moved the Poiseuille start-up's
- * errors to 0.00064 / 0.0020 at 1/20, 1/40 (an accidental cancellation with the Morris
- * epsilon at 1/20) and most squeeze references (make test: 10 failures to re-centre). */
+ * above the linear value, so the wall drags too little wherever the profile is curved (a
+ * Poiseuille channel of 7 rows carries 5.6 % too much flux, an effective slip of about
+ * 0.065 dx). The curvature is taken from the momentum balance at A (wall_curvature),
+ * eta kappa = rho (a - a_p - g) (a the last step's acceleration, a_p = -grad p~ / rho the
+ * pressure predictor's), and the wall term gains -c_base kappa d_B (d_A + d_B) / 2
+ * (wall_coeff_curved returns c = beta c_base and that factor, f = c_base d_B (d_A + d_B) / 2),
+ * explicit in the implicit step, for the velocity component tangent to the face only, where
+ * A lies over the plate's face (not at its ends, where a moving periodic plate's image ends
+ * would take the normal component and push a particle through the plate), and not at the
+ * first step (no acceleration yet): the pair's acceleration is c (u_A - u_w) - f kappa.
+ * That brings the 7-row channel's excess flux to 1.7 % (tests/lua/test_walls.lua). Not the
+ * default: the balance is the Newtonian one (a generalized Newtonian fluid's also has
+ * grad eta . grad u, and the Bingham Poiseuille plug comes out 3 % low at dx = 1/40). */
 static inline double wall_coeff_curved(const sph_world *w, int i, int j, int k, double *wx, double *wy,
                                        double *f, int *horizontal) {
     double da, db, fa = 0.5 * w->dx; /* the face distances once: beta as sph_plate_noslip */
@@ -206,7 +195,7 @@ static inline double wall_coeff_curved(const sph_world *w, int i, int j, int k, 
     return (1.0 + db / (da > fa ? da : fa)) * cbase;
 }
 
-/* kappa of fluid particle i (see wall_curve_factor); ax_p, ay_p the predictor's -grad p~ / rho */
+/* kappa of fluid particle i (see wall_coeff_curved); ax_p, ay_p the predictor's -grad p~ / rho */
 static inline void wall_curvature(const sph_world *w, int i, const double *axp, const double *ayp,
                                   double *kx, double *ky) {
     double r = w->rho[i] / w->eta[i];
@@ -271,8 +260,10 @@ void sph_viscous_explicit(sph_world *w, double dt) {
  * as its source's unknown times the image sign (a mirror reverses the normal component, so
  * the u and v systems differ in those entries), a particle's own mirror image as a diagonal
  * term. F_ij < 0, so the matrix is an M-matrix; scaling row i by m_i makes it symmetric
- * (m_i c_ij is symmetric in i, j), and Jacobi-preconditioned CG warm-started from u^n
- * solves it. The time step no longer depends on the viscosity. */
+ * (m_i c_ij is symmetric in i, j), and CG solves it from visc_guess's first guess,
+ * preconditioned by the multigrid cycle (solver = amg, both components at once) or Jacobi.
+ * The time step then does not depend on the viscosity but for the explicit free-surface
+ * stress (timestep.c). */
 static int reserve_visc(sph_world *w, int nrows) {
     if (nrows <= w->vrows_cap && w->vb) return 0;
     int cap = nrows + nrows / 4 + 64;
@@ -305,7 +296,7 @@ static void visc_assemble(sph_world *w, double dt, int comp) {
         sph_lap(w, SPH_PHASE_VISC_ASSEMBLY);
         return;
     }
-    /* the pressure predictor (pressure.c): -beta grad p^n / rho as a body force */
+    /* the pressure predictor (pressure.c): -beta grad p~ / rho as a body force */
     double gx = w->par.gravity[0], gy = w->par.gravity[1], beta = w->par.pressure_predictor;
     if (beta > 0) sph_pressure_predictor(w, w->xs, w->ys);
     int curved = w->par.wall_curved && beta > 0 && w->steps > 0; /* a: the last step's */
@@ -371,8 +362,8 @@ static void visc_assemble(sph_world *w, double dt, int comp) {
 /* The first guess of the viscous solve (sph_guess_weights): u^n plus the change u* - u^n
  * extrapolated from the last two steps' (w->gu, w->gv; every fluid particle is a row, so a
  * row's entries are always from those steps); else u^n (visc_assemble). comp 0: u into x,
- * 1: v into x. Measured (session 14, the paper's squeeze at 10^5 particles, one thread):
- * viscous iterations a step 15.3 from u^n, 7.8 from the last step's change, 5.1 from two. */
+ * 1: v into x. The two-step extrapolation needs a third of the iterations a start from u^n
+ * takes. */
 static void visc_guess(const sph_world *w, double dt, int comp, double *x) {
     const sph_guess *g = comp ? &w->gv : &w->gu;
     double a, b;
@@ -431,25 +422,15 @@ int sph_viscous_implicit(sph_world *w, double dt) {
     if (w->par.solver == SPH_SOLVER_AMG) {
         /* both components at once: u's system in A, v's in a view of A's structure with
          * v's values (visc_assemble keeps them in vval, vdiag, vrhs), its solution in the
-         * solver's x2. One multigrid setup for both (their matrices differ only in the
-         * entries of mirror images, and the hierarchy stays a valid preconditioner); the
-         * finest level's smoother takes each component's own values (v with u's: 10.2 ->
-         * 13.8 iterations a step at 10^5 particles, the images' entries change sign).
+         * solver's x2. One multigrid setup for both: their matrices differ only in the
+         * entries of mirror images, and the hierarchy stays a valid preconditioner; the
+         * finest level's smoother takes each component's own values (with u's, v's solve
+         * takes about a third more iterations: the images' entries change sign).
          * sph_solver_pcg2 reads the structure once for both in CG's product and the cycle,
          * each component's iterates as when solved alone (the same figures bit for bit).
-         * The hierarchy is reused across steps by the pressure solve's rules (solver.c:
-         * rebuilt when the first solve after a reuse takes more than one iteration over a
-         * fresh one, or at age 20), the finest smoother rebuilt from both components'
-         * values each step. Measured (session 13, the paper's Bingham squeeze Bn = 5,
-         * M = 800 at 10^5 particles, one thread, 30 steps after 20, two interleaved rounds):
-         * 14.0 -> 15.3 viscous iterations a step, the step 2,995 / 2,913 -> 2,695 / 2,694 ns
-         * a particle (-8 %; session 12: -13 %); the viscous solve's share 41 -> 34 %.
-         * The first guess (session 14; visc_guess): 15.3 -> 7.8 (one step) -> 5.1 (two)
-         * viscous iterations a step at 10^5 particles. Session 13 held it back on the
-         * Newtonian squeeze V = 1's force error at dx = 1/20 (0.262 then, with other
-         * round-off); measured in session 14 over one and two threads and tolerances 1e-6 to
-         * 1e-8: 0.242-0.253 without a guess, 0.244-0.250 with the one-step guess, 0.239-0.245
-         * with the two-step one: within the case's round-off spread. */
+         * The hierarchy is reused across steps by the pressure solve's rules (solver.c,
+         * "Reuse across steps"), the finest smoother rebuilt from both components' values
+         * each step. */
         visc_assemble(w, dt, 0);
         sph_csr V2 = *A;
         V2.val = w->vval;

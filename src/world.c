@@ -384,68 +384,35 @@ double sph_world_next_dt(sph_world *w) {
 /* Surface flags: position divergence below the threshold (about 2 inside, 1 on a
  * straight free surface), with hysteresis: a surface particle leaves the surface only once
  * its divergence is 0.1 above the threshold, so a particle hovering at the threshold does
- * not switch its Dirichlet condition on and off from step to step (measured: each switch
- * jolts the plate force). surface = 0 turns both tests off (a closed domain).
+ * not switch its Dirichlet condition on and off from step to step (each switch jolts the
+ * plate force). surface = 0 turns both tests off (a closed domain).
  * The divergence misses some edge particles that have a wall in their support (the contact
- * line, where the sample meets a plate: measured divergences 1.6-2.0). So a particle not
- * in the bulk (div r < 1.85) is also on the surface when nothing lies in front of it
- * (Marrone et al. 2010, simplified): no particle, fluid, wall or image, within a radius
- * (2 dx fluid, 1.75 dx next to a wall, 1.7 dx walls: SURFACE_CONE_FLUID below) inside
- * the 30-degree cone around its outward normal n = -sum_j V_j grad_i W_ij / |...|. The
- * normal leans away from the wall, so a 45-degree cone saw the edge's own neighbours next
- * to a plate and missed the particle (measured, Re = 0.01: an exposed edge particle 1.07 dx
- * below the upper plate, div r = 1.80). Flagging such particles raised the Re = 1000
- * start's density error (0.80 -> 1.04 % at t = 0.04) while density_limit was not there;
- * with it the stability suite's contact-line misses went from 5 (Bn = 100 load), 2 (Re =
- * 0.01), 1 (Re = 1000) to 2, 0, 1, at the same density criterion. The radius was 1.5 dx,
- * not 2: at Re = 1000 an edge particle 1.2 dx below the upper plate had a spray particle
- * 1.6 dx straight in front of it and went unflagged; at 1.5 dx every stability case but the
- * thin film passes, no flag is counted inside, and the Newtonian V = 1 squeeze's error
- * went 0.295 -> 0.286 (dx = 1/20), the explicit/implicit force agreement 5.6 -> 2.5 %. */
+ * line, where the sample meets a plate: divergences 1.6-2.0). So a particle not in the bulk
+ * (div r < 1.85) is also on the surface when nothing lies in front of it (Marrone et al.
+ * 2010, simplified): no particle, fluid, wall or image, within a radius (SURFACE_CONE_FLUID
+ * and the others below) inside the 30-degree cone around its outward normal
+ * n = -sum_j V_j grad_i W_ij / |...|. The normal leans away from the wall, so a wider cone
+ * (45 degrees) sees the edge's own neighbours next to a plate and misses the particle. */
 /* The cone's normal must mean something: |sum_j V_j grad_i W_ij| h at least
  * SURFACE_NORMAL_MIN. Inside a sample stretched by the squeeze the particles stand in
- * columns (measured, the stability suite's thin film with the thin-film options, dx = 1/40,
- * step 70: rows 0.65 dx apart, columns 1.55 dx), div r drops to 1.82-1.85 and the kernel
- * sum's gradient nearly vanishes (|n| h 0.001-0.014): the normal was noise, and a cone along
- * a row found the next column beyond 1.5 dx. That step 41 particles inside the sample were
- * taken for free surface (81 flags against 40 on the outline; the suite's surface check did
- * not count them: not enclosed in its sense). On the outline |n| h was 0.07-0.29 that step,
- * and over whole runs of the suite's cases (every particle whose cone was empty) at least
- * 0.04 (Re = 0.01) and 0.07 (Bn = 100 load). With 0.03: the suite with the defaults misses
- * no edge particle and flags none inside; the thin film's flags inside the sample (away
- * from the plates) to step 3000, one at a time in 33 steps, are gone, and it fails later
- * (h = 0.221 against 0.266); 0.06 gave the same outcomes (h = 0.218): 0.03 has a factor 2
- * to either side. Not cured: with the thin-film options steps 1-300 still hold 150 such
- * flags (414 before), particles whose nearest neighbour in the cone is 1.5-2 dx away and
- * |n| h 0.03-0.12; a cone of 2 dx (walls still 1.5 dx, spray of div r < 1 not counted)
- * left 8, but put the thin-film validation cases over their references (Bingham film
- * error 0.083 > 0.08 at 1/30, peak density 1.02 % at 1/40). */
+ * columns (rows 0.65 dx apart, columns 1.55 dx), div r drops to 1.82-1.85 and the kernel
+ * sum's gradient nearly vanishes (|n| h 0.001-0.014): the normal is noise, and a cone along
+ * a row finds the next column beyond the radius, so particles inside the sample would be
+ * taken for free surface. On the outlines of the stability suite's cases |n| h is at least
+ * 0.04, and at 0.03 they miss no edge particle and flag none inside. With the thin-film
+ * options some flags inside a stretched film remain (particles whose nearest neighbour in
+ * the cone is 1.5-2 dx away, |n| h 0.03-0.12). */
 #define SURFACE_NORMAL_MIN 0.03
-/* The cone's radius: 2 dx for fluid particles (and images), 1.7 dx for wall particles, and a
- * fluid particle of div r < 1 (spray: a droplet thrown off, few neighbours) does not close
- * the cone. It was 1.5 dx for both, and the stability suite's surface check
- * (lua/sph/stability.lua) takes a flag for false ("inside") when the particle has no
- * 60-degree opening within 1.6 dx (a plate as its wall row within 1.5 dx): round-off
- * decided the particles that stood between the two. Measured (session 13, the thin film
- * to h = 0.15), with changes of round-off only (-O1; the viscous hierarchy reused and the
- * viscous solve started from the last step's increment, viscous.c): a particle deep in the
- * stretched sample flagged 5 steps running (|n| h 0.030, the next fluid particle in its
- * cone 1.515-1.531 dx off); one 1.07 dx below the upper plate whose cone held the plate's
- * walls at 1.55-1.57 dx and no fluid; and at 1.75 dx for fluid, a vacancy: a particle 3.3
- * dx above the lower plate, every neighbour interior, flagged 27 steps running through an
- * 84-degree opening within 1.75 dx that particles at 1.80-1.81 dx closed (Marrone et al.'s
- * scan reaches 2h and more along the normal). At 2 dx with walls at 1.5 dx, or spray
- * counted, the Re = 1000 start missed an edge particle (a spray particle 1.6 dx in front of
- * it, as in session 10); at 2 dx next to walls too, the headline squeeze (Bn = 0.5, Re =
- * 10, output every 0.005) took 597 steps instead of 467, in episodes of dt shrunk 2-3 times
- * by the density error. With the radii above: every suite case passes on one and two
- * threads, with -O2 and -O1, with and without the viscous changes, no flag deep in the
- * stretched sample. Cost, on the validations against lubrication theory (their round-off
- * spread, measured with the viscous changes: up to 0.018 in a relative error): the
- * Bingham thin film's error 0.017 -> 0.034 at dx = 1/40 (0.056 -> 0.059 at 1/30; the
- * test's bound 0.08), the Newtonian squeeze under F = 20 0.466 / 0.386 -> 0.487 / 0.412 at
- * dx = 1/20 / 1/30, the Bingham squeeze under F = 400 0.516 -> 0.527; the loaded thin
- * film's peak density error 2.8 -> 2.1 %. */
+/* The cone's radius: 2 dx for fluid particles (and images), 1.75 dx for them next to a wall
+ * (a wall within 2 dx), 1.7 dx for wall particles, and a fluid particle of div r < 1
+ * (spray: a droplet thrown off, few neighbours) does not close the cone. The radii are
+ * clear of the 1.6 dx opening that the stability suite's surface check
+ * (lua/sph/stability.lua) takes for a true surface (a plate as its wall row within 1.5 dx),
+ * so round-off does not decide the particles that stand between the two; a vacancy inside
+ * the sample is closed by particles 1.8 dx off, inside the fluid radius (Marrone et al.'s
+ * scan reaches 2h and more along the normal). Walls at 1.5 dx, or spray counted, miss an edge particle with a spray particle
+ * 1.6 dx in front of it; 2 dx next to a wall too flags contact-line particles whose density
+ * error then shrinks dt (a quarter more steps on the headline squeeze). */
 #define SURFACE_CONE_FLUID 2.0
 #define SURFACE_CONE_FLUID_WALL 1.75
 #define SURFACE_CONE_WALL 1.7
@@ -509,7 +476,7 @@ void sph_lap(sph_world *w, int phase) {
 
 
 /* A dt the caller gives may be at most this many times the viscous time rho h^2 / max eta
- * of the fluid: beyond it no flow is resolved (w:step(1e300) used to pass, t = 2e300). */
+ * of the fluid: beyond it no flow is resolved (and w:step(1e300) would take t to 2e300). */
 #define SPH_DT_SPAN 1e6
 
 int sph_world_step(sph_world *w, double dt) {
@@ -517,8 +484,8 @@ int sph_world_step(sph_world *w, double dt) {
     w->lap = t0;
     prepare(w);
     if (w->nfluid == 0) return sph_world_fail(w, "the world has no fluid: call fill first");
-    /* a step that failed on a NaN leaves it in the particles; stepping on from there ran
-     * the neighbour build off its arrays (a particle not among its own candidates) */
+    /* a step that failed on a NaN leaves it in the particles; stepping on from there would
+     * run the neighbour build off its arrays (a particle not among its own candidates) */
     if (check_finite(w)) {
         char why[sizeof w->err];
         memcpy(why, w->err, sizeof why);

@@ -1,6 +1,7 @@
--- The analytic and reference flows (issue 5), shared by the regression tests
--- (tests/lua/test_flows.lua and friends, quick resolutions) and the convergence study
--- (scripts/bench_validation.lua, every resolution). Units: H = U = 1 throughout.
+-- The analytic and reference flows, shared by the regression tests (tests/lua/
+-- test_poiseuille.lua, test_couette.lua, test_taylor_green.lua, test_cavity.lua: quick
+-- resolutions) and the convergence study (scripts/bench_validation.lua, every resolution).
+-- Units: H = U = 1 throughout.
 --
 -- Each case: name, error_name (what `error` measures), resolutions (the full study),
 -- quick (what a test affords) and run(dx, opts) -> { particles, steps, wall, p_iter, v_iter,
@@ -9,15 +10,15 @@
 -- opts: threads, and per case the knobs listed next to it (every knob has the default the
 -- study uses).
 --
--- Measured (threads = 1; errors at dx = 1/20, 1/40, 1/80 (cavity: 1/20, 1/30, 1/40), the
--- observed orders between successive resolutions, steps):
+-- The study's errors (threads = 1; at dx = 1/20, 1/40, 1/80, the cavity at 1/20, 1/30,
+-- 1/40), the observed orders between successive resolutions, and the steps:
 --   Poiseuille start-up  0.00513  0.00310  0.00271   orders 0.72 0.19   330 1290 5130 steps
 --   Bingham Poiseuille   0.0900   0.0231   0.00624   orders 1.96 1.89    90  123  170
 --   Couette start-up     0.00296  0.00182  0.00155   orders 0.70 0.23   330 1290 5130
 --   Taylor-Green Re=100  0.0340   0.0167   0.0110    orders 1.02 0.60   846  624 1071
 --     (kinetic energy decay rate 1.526 1.558 1.563, exact 1.579)
 --   cavity Re=100        0.0143   0.00572  0.00354   orders 2.25 1.67  5064 5251 3214
---     (max deviation from Ghia 0.039 at 1/20; session 8, surface = 0)
+--     (max deviation from Ghia 0.039 at 1/20)
 -- The start-ups level off at the Morris operator's epsilon error (see startup_dt).
 local sph = require "sph"
 
@@ -235,13 +236,11 @@ local taylor_green = {
   -- exact 2 b = 1.579), decay_exact, ke_ratio (kinetic energy at t_end over the exact one).
   -- Particles follow the flow into the stagnation lines (x, y = 0, 1/2: compressed across
   -- them at the strain rate 2 pi U, stretched along them), and only shifting restores an
-  -- isotropic arrangement. Measured at dx = 1/40: without shifting the closest pair is at
-  -- 0.44 dx at t = 0.145 and the run blows up at t = 0.175; with shifting but dt from the
-  -- velocity limit (6.8e-3; the shifting is capped at h^2/4 per step, so a long step
-  -- shifts less per unit time) it blows up at t = 0.16 (closest pair 0.48 dx at t = 0.13);
-  -- with dt <= 2e-3 the closest pair stays above 0.8 dx. Hence dt_max = 0.08 dx. The domain
-  -- has no free surface (surface = 0: at dx = 1/40 the stretched lattice had 104 particles
-  -- taken for free surface at t = 0.13).
+  -- isotropic arrangement. The shifting is capped at h^2/4 per step, so a long step shifts
+  -- less per unit time: with dt from the velocity limit the closest pairs come within half
+  -- a dx and the run blows up before t = 0.2 (dx = 1/40); with dt <= 2e-3 they stay above
+  -- 0.8 dx. Hence dt_max = 0.08 dx. The domain has no free surface (surface = 0: otherwise
+  -- particles of the stretched lattice are taken for free surface).
   run = function(dx, opts)
     opts = opts or {}
     local w = sph.world{ dx = dx, rho = 1, periodic = { x = { 0, 1 }, y = { 0, 1 } }, threads = opts.threads,
@@ -347,17 +346,13 @@ local cavity = {
   -- The density error left after the correction sits in the fluid rows that slide along
   -- the lid (continuity sees the lid's particles still: a fluid particle passing over the
   -- wall lattice sees a kernel sum that is not symmetric) and grows with dt, so the
-  -- engine's density-error step control sets dt here. Measured at dx = 1/20 to t = 10:
-  -- density_tol 0.02: 6602 steps, RMS against Ghia 0.0117; 0.04: 2676 steps, 0.0122; no
-  -- control (density_tol = 0): 10 % density error and a particle through the bottom wall
-  -- at t = 6.
-  -- surface = 0 (session 8): with free-surface detection on, a particle next to a corner
-  -- of the closed box sometimes passed the surface test (1-2 flagged at dx = 1/20 and 1/40);
-  -- held at p = 0 it made the pressure level of the whole box wrong (the pin is unused once
-  -- a surface exists), and at dx = 1/40 the density error rose to 11 % by t = 0.9 and the
-  -- time step collapsed at t = 3.7-3.9 (a particle through a wall). Declared closed, every
-  -- resolution runs to t = 10: 0.01425 / 0.00572 / 0.00354 at 1/20, 1/30, 1/40 (orders
-  -- 2.25, 1.67; 5064 / 5251 / 3214 steps).
+  -- engine's density-error step control sets dt here: density_tol = 0.04 takes 2.5 times
+  -- fewer steps than 0.02 for nearly the same error, and without the control the density
+  -- error reaches 10 % and a particle goes through the bottom wall.
+  -- surface = 0: with free-surface detection on, a particle next to a corner of the closed
+  -- box sometimes passes the surface test; held at p = 0 it makes the pressure level of the
+  -- whole box wrong (the pin is unused once a surface exists), and at dx = 1/40 the run
+  -- fails (a particle through a wall). Declared closed, every resolution runs to t = 10.
   run = function(dx, opts)
     opts = opts or {}
     local T3 = 3 * dx

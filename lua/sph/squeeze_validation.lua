@@ -11,10 +11,8 @@
 -- part of the squeeze, the thinnest film this engine reaches at every resolution (at
 -- dx = 1/20 a particle goes through a plate near h = 0.25; 7 particles span the gap at
 -- h = 0.35). It is not a >> h: lubrication leaves out corrections of relative order h / a
--- (the free edge's bulge, the extensional stresses), 0.25-0.4 in the window. A film
--- started as such (h0 = 0.5, half-width a0 = 2, a / h = 4 at the start) fails within 250
--- steps at dx = 1/40 (a fluid particle goes through the lower plate, Re = 0.1 or 1), and
--- with a0 = 1 at h = 0.31 (density error 1 % throughout).
+-- (the free edge's bulge, the extensional stresses), 0.25-0.4 in the window. Thinner
+-- films need the thin-film options: the film cases below.
 --
 -- The cases (measured figures in tests/lua/test_squeeze_validation.lua):
 --   1. Newtonian at V = 1, Re = 0.1 (Stokes flow, as lubrication assumes; at Re = 1
@@ -108,7 +106,7 @@ end
 -- The sample's area (whole sample, per unit depth) from its particle count: the fill puts
 -- one particle per dx^2, and when 0.5 / dx is not a whole number (dx = 1/25: 12.5) the
 -- half-width is 13 or 12 columns, not 0.5. The references depend on it as A^3 (Newtonian)
--- and A^2 (plastic): with A = 1 taken for granted, dx = 1/25 came out 12 % off.
+-- and A^2 (plastic): taking A = 1 would put dx = 1/25 12 % off.
 local function area(w, dx)
   return 2 * w:stats().fluid * dx * dx
 end
@@ -259,11 +257,10 @@ M.cases = {
   },
   {
     -- the thin-film regime: a film started thin (half-width 1.6, height 0.2, a/h 8.4 at the
-    -- start) squeezed to h = 0.17 with the thin-film options (pressure.c, session 8); the
-    -- window starts 0.02 of time after the impulsive start (Re = 1: the gap's viscous time
-    -- rho h^2 / mu is 0.03). Measured (one thread): 0.1475 / 0.1217 / 0.1102 / 0.0861 at
-    -- 1/30 .. 1/80 (mean F / lubrication 0.860 / 0.884 / 0.899 / 0.933; 0.088 and 0.938 at
-    -- 1/100). Part of what is left is the walls' first-order slip (docs/limitations.md).
+    -- start) squeezed to h = 0.17 with the thin-film options (pressure.c); the window starts
+    -- 0.02 of time after the impulsive start (Re = 1: the gap's viscous time rho h^2 / mu is
+    -- 0.03). The force approaches lubrication from below (0.86 of it at 1/30, 0.93 at
+    -- 1/80); part of what is left is the walls' first-order slip (docs/limitations.md).
     name = "Newtonian squeeze, thin film",
     error_name = "relative L2 of the plate force against lubrication over h in [0.17, 0.18] (a/h 9.9-11), film started thin (h0 = 0.2, half-width 1.6), Re = 1, density_correction = gmres, pressure_gradient = difference",
     resolutions = { 1 / 30, 1 / 40, 1 / 60, 1 / 80 },
@@ -273,12 +270,10 @@ M.cases = {
       function(h, V, A) return M.newtonian_force(h, V, 1, A) end),
   },
   {
-    -- the same film, Bingham (Bn = 100, M = 100): measured (session 8, one thread) 0.0567 /
-    -- 0.0138 / 0.0401 / 0.0544 at 1/30 .. 1/80, force 1.012 / 0.997 / 0.962 / 0.954 x
-    -- thin-film theory: within 5 % but not converging monotonically (the walls' first-order
-    -- slip lowers the force as the rows multiply? open). With the defaults (passes,
-    -- symmetric gradient) the film blows up at every resolution (non-positive density at
-    -- step 600-835, h ~ 0.18).
+    -- the same film, Bingham (Bn = 100, M = 100): within 5 % of thin-film theory, but not
+    -- converging monotonically (open: perhaps the walls' first-order slip). With the
+    -- defaults (passes, symmetric gradient) the film blows up at every resolution
+    -- (non-positive density near h = 0.18).
     name = "Bingham squeeze, thin film",
     error_name = "relative L2 of the plate force against thin-film Bingham theory over h in [0.17, 0.18] (a/h 9.9-11), film started thin (h0 = 0.2, half-width 1.6), Bn = 100, M = 100, Re = 1, density_correction = gmres, pressure_gradient = difference",
     resolutions = { 1 / 30, 1 / 40, 1 / 60, 1 / 80 },
@@ -290,20 +285,15 @@ M.cases = {
   {
     name = "Newtonian squeeze F = 20",
     error_name = "relative error of the slope of h^-5 against t (lubrication: 5 F / mu) over h in [0.35, 0.45], Re = 1",
-    -- (sessions 5-6: 1/40 and 1/60 failed, a fluid particle through the upper plate near the
-    -- sample's edge, so 1/25 was added; since session 7 both run: 1/60 reaches h = 0.35 with
-    -- the density error under 0.9 %, measured in session 9)
     resolutions = { 1 / 20, 1 / 25, 1 / 30, 1 / 40 },
     quick = { 1 / 20, 1 / 30 },
     run = load_case("Newtonian squeeze F = 20", { Re = 1, F = 20, h_end = 0.35, h_win = 0.45 }),
   },
   {
     -- the film started thin under a constant load F = 400 (the plate closes at 0.05-0.1:
-    -- nearly Stokes flow). Measured (session 9, one thread): 0.3598 / 0.2843 / 0.2205 /
-    -- 0.2060 at 1/30 .. 1/80: the plate closes 1.36-1.21 x faster than lubrication. Part of
-    -- it is a time-step error (0.253 at 1/30 with dt_max = 1e-4): the projection's residual
-    -- divergence next to the plates, which the option projection_passes = 1 removes (0.2410
-    -- / 0.2118 / 0.1911 / 0.1551; pressure.c says why it is not the default).
+    -- nearly Stokes flow). The plate closes 1.2-1.4 x faster than lubrication; part of it is
+    -- a time-step error, the projection's residual divergence next to the plates, which the
+    -- option projection_passes = 1 removes (pressure.c says why it is not the default).
     name = "Newtonian squeeze under load, thin film",
     error_name = "relative error of the slope of h^-5 against t (lubrication: 5 F / (mu A^3)) over h in [0.17, 0.18] (a/h 9.9-11), film started thin (h0 = 0.2, half-width 1.6), F = 400, Re = 1, density_correction = gmres, pressure_gradient = difference",
     resolutions = { 1 / 30, 1 / 40, 1 / 60, 1 / 80 },

@@ -28,41 +28,29 @@ function S.find(name)
 end
 
 -- Free-surface flags against the sample's outline (its body's: droplets thrown off do not
--- count), in rows of height dx: a surface
--- particle more than 3 dx inside the outermost particle of its row and the two rows beside
--- it is false ("inside") when it is also enclosed: no opening of 60 degrees or more around
--- it, among the particles within 1.6 dx and a plate's wall row within 1.5 dx (a Re = 1000
--- start throws a sheet off the upper contact line whose underside, 3 dx and more inside
--- the sheet's tip, is rightly free surface; 28 such particles were counted "inside" before
--- the enclosure test). The engine flags a particle off the bulk when the 60-degree cone
--- around its normal holds no fluid particle within 2 dx and no wall within 1.7 dx
+-- count), in rows of height dx. A surface particle more than 3 dx inside the outermost
+-- particle of its row and the two rows beside it is false ("inside") when it is also
+-- enclosed: no opening of 60 degrees or more around it, among the particles within 1.6 dx
+-- and a plate's wall row within 1.5 dx (a Re = 1000 start throws a sheet off the upper
+-- contact line whose underside, 3 dx and more inside the sheet's tip, is rightly free
+-- surface, and not enclosed). The engine flags a particle off the bulk when the 60-degree
+-- cone around its normal holds no fluid particle within 2 dx and no wall within 1.7 dx
 -- (src/world.c): the check's radii are below the engine's, so that round-off does not
--- decide between them. The enclosure test was eight 45-degree sectors each holding a
--- particle within 1.6 dx, and a plate's wall row within 1.6 dx: that calls enclosed a
--- particle with an opening of up to 90 degrees (two neighbours at the edges of adjacent
--- sectors), and the wall row, sampled every 0.25 dx, fills directions the engine's wall
--- particles (dx apart) leave open. Measured (session 13, the thin film to h = 0.15 with the
--- engine's radii at 1.75 / 1.7 dx, -O1, two threads): one particle counted inside by the
--- sectors, 1.9 dx below the upper plate, looking through a 74-degree opening between two surface
--- particles of a void layer under the plate; one 0.74 dx above the lower plate, whose
--- opening (57 degrees with the wall row to 1.6 dx, 62 to 1.5 dx) faced walls the engine
--- had beyond 1.7 dx. Within dx of a plate's face
+-- decide between them. The opening is measured as the largest angle between neighbours
+-- (sectors of 45 degrees would call enclosed an opening of up to 90 degrees), and the wall
+-- row within 1.5 dx only, so that it fills no direction the engine's wall particles (dx
+-- apart) leave open. Within dx of a plate's face
 -- the outline is the contact line, the outermost body particle touching that face (within
 -- 0.75 dx of it: a first row sits at 0.5 dx), not the rows beside it. The front of a
 -- squeezed film is a fountain flow: ahead of the contact line its underside runs 0.8-1.3 dx
 -- off the plate over a wedge of void thinner than a particle for 3-4 dx, and the rows
 -- beside reach 2-4 dx further out; the particles bordering that wedge are rightly free
--- surface, and the 1.6 dx enclosure test does not resolve the wedge. Measured (session 12,
--- the thin film, checks every 5 steps, two threads): 166 "inside" counts, all 0.6-0.91 dx
--- from a face at the front, against the rows beside; 30 against the outermost particle
--- within dx of the face (the underside's tip); none against the touching contact line.
+-- surface, and the 1.6 dx enclosure test does not resolve the wedge.
 -- The outermost particle of a row not flagged is "missing" when it
 -- is exposed, i.e. no fluid particle lies in the 90-degree cone facing outwards (+x) within
 -- 2.1 dx of it (a particle with a surface particle diagonally in front of it, 0.8 dx away,
 -- is the second layer, not the edge). The radius is beyond the engine's cone (2 dx), as
--- the enclosure's is inside it: it was 1.5 dx, and with the engine's cone at 2 dx the thin
--- film (session 13, one thread, h = 0.151) counted a particle of its front missing that had
--- two surface particles 1.57 dx ahead of it, 17 degrees above and below, 0.94 dx apart;
+-- the enclosure's is inside it, for the same reason;
 -- rows that touch a plate (within dx of its face: the contact line, whose particles have
 -- the wall in their support and are held by it, not at p = 0) are not checked. The half
 -- sample's other sides are the symmetry plane and the plates, with no free surface.

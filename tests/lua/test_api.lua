@@ -171,8 +171,8 @@ T.case("fill and plate", function()
   T.close(top.mass, 3, 0, "plate.mass is settable")
   T.checkerror("cannot be set", "plate.force is read-only", function() top.force = 1 end)
   T.checkerror("positive", "plate mass must be positive", function() top.mass = -1 end)
-  -- the value fields are numbers, and calling one is Lua's own error, naming it (sph used to
-  -- give every number a __call for plate:velocity(v); plate:mass(50) drove the plate at 50)
+  -- the value fields are numbers, and calling one is Lua's own error, naming it: a call of
+  -- a value field never sets the plate's velocity
   T.checkerror("attempt to call a number value (method 'mass')", "plate:mass(m) is an error",
                function() top:mass(50) end)
   T.checkerror("attempt to call a number value (method 'force')", "plate:force(f) is an error",
@@ -189,7 +189,7 @@ T.case("fill and plate", function()
   local xs = w:field("x")
   T.check(#xs == 100, "field returns one value per fluid particle")
   -- rho_sum reads the last step's neighbour list: before any step it is an error, not a
-  -- read of unset memory (it crashed until session 16), and so is a render coloured by it
+  -- read of unset memory (a crash), and so is a render coloured by it
   T.checkerror("no neighbour list for the current particles yet", "rho_sum before a step", w.field, w, "rho_sum")
   T.checkerror("needs the neighbour list of a step", "render by rho_sum before a step", w.render, w,
                { file = os.tmpname(), color = "rho_sum" })
@@ -271,10 +271,10 @@ T.case("laws", function()
   T.checkerror("each", "run with a non-function each", w.run, w, { until_t = 1, each = 3 })
 end)
 
--- A step that fails on a non-finite or non-positive value leaves it in the particles; the
--- next step ran on from there, and the neighbour build, meeting a particle its cell grid
--- did not hold (a NaN), wrote before its arrays (found by tests/lua/test_fuzz.lua, seed 12:
--- heap-buffer-overflow in fill_row, "double free or corruption" without the sanitizer).
+-- A step that fails on a non-finite or non-positive value leaves it in the particles; a
+-- next step run on from there would have the neighbour build, meeting a particle its cell
+-- grid does not hold (a NaN), write before its arrays (a heap-buffer-overflow that
+-- tests/lua/test_fuzz.lua can reach).
 T.case("step: a world a failed step left non-finite is not stepped on", function()
   local w = sph.world{ dx = 0.1, threads = 1 }
   w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
@@ -456,7 +456,7 @@ end)
 -- Every writer replaces its file whole (src/atomic.c): a write that fails leaves the file
 -- that was there byte for byte, and no temporary file. The failure is real: a child sph
 -- under a file size limit of 1 KB (ulimit -f 2, SIGXFSZ ignored) whose writes stop with
--- "File too large"; before, the writers truncated the old file first.
+-- "File too large" (a writer that truncates the old file first would lose it).
 T.case("a failed write leaves the old file", function()
   local base = os.tmpname()
   local names = { csv = base .. ".csv", vtk = base .. ".vtk", save = base .. ".state" }
@@ -533,7 +533,7 @@ T.case("dt_growth: eased holds dt while the density error nears density_tol", fu
   -- with "eased" no step is longer than the one before while the last step's max density
   -- error was at 95 % of density_tol (0.5 %) or more, none more than 25 % longer; the
   -- default ("fixed") grows 25 % a step up to the tolerance, so such steps exist there
-  -- (measured: 2026-11-30, 27 of them in 150 steps with "fixed"; the test needs one)
+  -- (measured: 27 of them in 150 steps with "fixed"; the test needs one)
   local squeeze = require "sph.squeeze"
   local function run(growth)
     local w = squeeze.build{ dx = 1 / 40, Re = 1, Bn = 5, M = 800, mode = "velocity", V = 1,

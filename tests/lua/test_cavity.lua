@@ -36,16 +36,10 @@ T.case("lid-driven cavity, Re = 100, against Ghia, Ghia & Shin (1982)", function
   for _, q in ipairs(r.v) do print(string.format("# v(x = %.4f, y = 0.5) = %8.5f  Ghia %8.5f", q[1], q[2], q[3])) end
   print(string.format("# dx = 1/%d  t = %g  %s = %.4f, max %.4f  kinetic energy %.5f  %d particles  %d steps  %.1f pressure / %.1f viscous iterations per step  %.2f s",
     math.floor(1 / dx + 0.5), r.t, c.error_name, r.error, r.umax_err, r.ke, r.particles, r.steps, r.p_iter, r.v_iter, r.wall))
-  -- measured at dx = 1/20, t = 10 (2938 steps): RMS 0.0143 U over the 30 points, max
-  -- 0.040 U (u at y = 0.9766, under the lid: 0.801 against 0.841); the centreline minimum
-  -- u(0.5, 0.4531) = -0.198 (Ghia -0.211). The "steady" SPH state fluctuates: with another
-  -- step sequence (outputs every 2.5) RMS 0.0122 at t = 10, 0.0147 at 12.5, 0.0124 at 15,
-  -- max up to 0.042, kinetic energy within 1.5 %. Tolerances 1.25 x the largest: RMS
-  -- 0.0184, max 0.053. Session 8, the box declared closed (surface = 0; see flows.lua):
-  -- RMS 0.0142, max 0.0386 in 5064 steps, inside the same tolerances. Session 10, the
-  -- density correction's GMRES fallback (density.c: the passes leave 1-10 % at the
-  -- corners every step): RMS 0.0118, max 0.0271 in 5808 steps (0.0157 / 0.0429 in 5318
-  -- just before it).
+  -- measured at dx = 1/20, t = 10 (810 steps, two threads): RMS 0.0148 U over the 30
+  -- points, max 0.035 U. The "steady" SPH state fluctuates: with another step sequence the
+  -- RMS moves between 0.012 and 0.015 over t = 10-15, the max up to 0.042, the kinetic
+  -- energy within 1.5 %. Bounds 1.25 x the largest seen: RMS 0.0184, max 0.053.
   T.below(r.error, 0.0184, "cavity centreline velocities within 0.0184 U (RMS) of Ghia et al. at dx = 1/20")
   T.below(r.umax_err, 0.053, "cavity centreline velocities within 0.053 U (max) of Ghia et al. at dx = 1/20")
 end)

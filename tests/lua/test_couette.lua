@@ -23,7 +23,7 @@ T.case("Couette start-up, explicit viscosity", function()
     print(string.format("# dx = %.4g  t = %.2f  max |u - exact| = %.4f  max |v| = %.2e  steps %d", dx, t, e.emax, e.vmax, e.steps))
   end
   -- measured max |u - u_exact| / U at t = 0.05, 0.1, 0.2, 0.5, dx = 1/20:
-  --   0.0028, 0.0021, 0.0014, 0.0016 (with Morris' clamp beta <= 1.5 it was 0.0242, 0.0174,
+  --   0.0028, 0.0021, 0.0014, 0.0016 (Morris' clamp beta <= 1.5 gives 0.0242, 0.0174,
   --   0.0122, 0.0089, first order in dx). Tolerances: 1.25 x the measured figures.
   local tol = { 0.0035, 0.0027, 0.0018, 0.0020 }
   for k, t in ipairs(times) do
@@ -35,8 +35,7 @@ T.case("Couette start-up, explicit viscosity", function()
   local order = math.log(errs[2].emax / fine[1].emax, 2)
   print(string.format("# dx = %.4g  t = 0.10  max |u - exact| = %.4f: observed order %.2f", dx / 2, fine[1].emax, order))
   -- measured 0.0016 at dx = 1/40 (order 0.39: the wall error is gone, what is left is
-  -- mostly the impulsive start; 0.0017 before the pinned pressure's source was made
-  -- compatible)
+  -- mostly the impulsive start)
   T.below(fine[1].emax, 0.0022, "Couette u(y) within 0.0022 U of the series at dx = 1/40, t = 0.1")
 end)
 

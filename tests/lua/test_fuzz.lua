@@ -6,9 +6,9 @@
 -- the seed from the environment (SPH_FUZZ_SEED, else the clock's; printed first):
 -- SPH_FUZZ_CALLS=N, SPH_FUZZ_SEED=S (default 27 here); SPH_FUZZ_VERBOSE=1 prints each call
 -- (and a step's world, a run's options) before it runs, to find the one that crashed.
--- Every file it writes is in a temporary folder (bad names included). Found so far: a
--- step on a world a failed step had left with a NaN wrote before the neighbour arrays
--- (seed 12; world.c), a log plot of data at 5e-324 overflowed an int (plot.c).
+-- Every file it writes is in a temporary folder (bad names included). The kind of bug it
+-- finds: a step on a world a failed step left with a NaN (world.c checks for it), a log
+-- plot of data at 5e-324 (plot.c keeps the decades finite).
 local sph = require "sph"
 local T = require "sph.test"
 

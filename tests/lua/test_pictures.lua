@@ -164,10 +164,9 @@ T.case("render a field with a fixed range", function()
     "a constant field with a colour bar renders")
 end)
 
--- A log axis's automatic range in whole decades: data at 5e-324 rounded down to 10^-324 = 0
--- (1.7e308 up to 10^309 = inf), and the tick loop converted log10(0) = -inf to int (UBSan:
--- signed overflow in axis_ticks; found by tests/lua/test_fuzz.lua). The decades now stay
--- within [1e-307, 1e308].
+-- A log axis's automatic range in whole decades: data at 5e-324 would round down to
+-- 10^-324 = 0 (1.7e308 up to 10^309 = inf), and the tick loop would convert log10(0) = -inf
+-- to int (UBSan: signed overflow in axis_ticks). The decades stay within [1e-307, 1e308].
 T.case("log axes of data at the ends of the doubles", function()
   local dir = os.tmpname()
   for _, y in ipairs{ { 5e-324, 1 }, { 1, 1.7e308 }, { 5e-324, 1.7e308 } } do
@@ -293,7 +292,7 @@ end)
 
 -- A picture replaces its file whole (src/atomic.c): a write that fails (here for real: a
 -- child sph under a 1 KB file size limit, SIGXFSZ ignored) leaves the old file byte for
--- byte and no temporary file; before, the writers truncated it first.
+-- byte and no temporary file.
 T.case("a failed picture write leaves the old file", function()
   local names = { render = tmp("old_render.png"), plot = tmp("old_plot.png"), animate = tmp("old_anim.png") }
   local frame = tmp("old_frame.png")

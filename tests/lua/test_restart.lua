@@ -1,9 +1,8 @@
 -- w:save / sph.load (src/state.c): the loaded world holds exactly the saved state, and a run
 -- continued from it is the uninterrupted run bit for bit (one thread): the state holds the
 -- solves' first guesses and the multigrid hierarchies kept for reuse with their counters.
--- Before they were saved (SPHSTAT5), saved at step 100 and continued 50 steps, the
--- squeeze at constant plate velocity was 5.4e-8 off in t and the plate position, the loaded
--- one 1.3e-7 in the position, 4.3e-5 relative in the force, 2e-3 in a pressure.
+-- Without them, a run saved at step 100 and continued 50 steps is off by about 5e-8 in t
+-- and the plate position, and a loaded one by 4e-5 relative in the force.
 local sph = require "sph"
 local squeeze = require "sph.squeeze"
 local T = require "sph.test"
@@ -76,8 +75,8 @@ end)
 -- ... 640 steps); the wait is part of the state. The lid-driven cavity (closed, dx = 1/20:
 -- its passes leave 1-10 % every step) takes fallbacks from its first steps, nearly all
 -- useless; saved at step 60 (3 fallbacks so far) and continued 150 steps, the loaded world
--- must take as many as the uninterrupted one (measured: 5 and 5; before the wait was
--- saved the loaded world started with none: 4 against 5). The density descent is off here:
+-- must take as many as the uninterrupted one (measured: 5 and 5; without the saved wait the
+-- loaded world starts with none and takes 4). The density descent is off here:
 -- it leaves this cavity under density_limit, so with it the fallback is never taken.
 T.case("save, load and continue: the density fallback's wait", function()
   local file = os.tmpname()

@@ -2,8 +2,8 @@
 -- the half square 2a = H = 1, V = -1, Re = 0.05, the plate force averaged over t in
 -- (0.005, 0.02), after the impulsive start's transient, against the FE force at the current
 -- gap (ln F linear in ln h between the square, 5.2493, and the rectangle at h = 0.8,
--- 10.2585). The free surface is traction-free (p = n . tau . n): with p = 0 the force was
--- 0.55 / 0.59 / 0.61 of FE and did not converge.
+-- 10.2585). The free surface is traction-free (p = n . tau . n): with p = 0 the force is
+-- 0.55 / 0.59 / 0.61 of FE and does not converge.
 local sph = require "sph"
 local T = require "sph.test"
 

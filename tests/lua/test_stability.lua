@@ -29,9 +29,8 @@ end
 -- is noise (|n| h 0.001-0.014) and a cone along a row can find nothing within 1.5 dx. Every
 -- step to step 3000 (h = 0.28), no flag may lie more than 3 dx inside the outermost
 -- particle of its row and the rows beside it, away from the plates (3 dx). Measured: none;
--- before the empty-cone test asked for |n| h >= 0.03 (src/world.c, SURFACE_NORMAL_MIN) one
--- such flag at a time in 33 of the 3000 steps on one thread, 197 on two (and with the
--- thin-film options, steps 1-300: 414 flags, 50 at step 72, against 150 and 24 with it).
+-- without the empty-cone test's |n| h >= 0.03 (src/world.c, SURFACE_NORMAL_MIN) such flags
+-- come one at a time in 33 of the 3000 steps on one thread, 197 on two.
 T.case("thin film: no surface flags inside the stretched sample (steps 1-3000)", function()
   local squeeze = require "sph.squeeze"
   local c = stability.find("thin film h=0.15")
@@ -55,13 +54,12 @@ T.case("thin film: no surface flags inside the stretched sample (steps 1-3000)",
   -- (one thread): 0.80 % with the descent, 1.0 % at h = 0.2376 and 5.2 % by h = 0.226
   -- without it (density_descent = 0). The limit is the suite's 1 %.
   -- From here on the suite's surface check every 10 steps as well (its criterion: no flag
-  -- inside the sample, no exposed edge particle missed; stability.surface_check). Measured
-  -- (session 13): 0 and 0 with -O2 on one and two threads, with make check's -O1 build, and
-  -- with the viscous solve's changes of round-off (viscous.c). In session 12 round-off
-  -- decided 1-3 borderline flags (a neighbour 1.5-1.6 dx off in the open direction): the
-  -- engine's cone now reaches further (2 dx, 1.7 dx to walls) than the check looks
-  -- (1.6 dx), the check's enclosure is a 60-degree opening test, and its edge test looks
-  -- further (2.1 dx) than the engine's cone (src/world.c, lua/sph/stability.lua).
+  -- inside the sample, no exposed edge particle missed; stability.surface_check). Measured:
+  -- 0 and 0 with -O2 on one and two threads and with make check's -O1 build. Round-off
+  -- does not decide borderline flags: the engine's cone reaches further (2 dx, 1.7 dx to
+  -- walls) than the check looks (1.6 dx), the check's enclosure is a 60-degree opening
+  -- test, and its edge test looks further (2.1 dx) than the engine's cone (src/world.c,
+  -- lua/sph/stability.lua).
   local emax, inside, missing = 0, 0, 0
   local function surface()
     if w.steps % 10 == 0 then
@@ -78,10 +76,9 @@ T.case("thin film: no surface flags inside the stretched sample (steps 1-3000)",
                       top.position, emax, w:stats().density_descents))
   T.below(emax, 0.01, "thin film: max density error under 1 % down to h = 0.225")
   -- And on to the suite's h = 0.15: below h ~ 0.17 the symmetric gradient's term in p_i
-  -- itself made the film's pressure alternate step to step and grow unless the pressure
+  -- itself makes the film's pressure alternate step to step and grow unless the pressure
   -- matrix has it (pressure.c, SELF_TERM). Measured: to h = 0.15 at 0.80 % on one and two
-  -- threads (9357 and 9382 steps); without the term the time step collapsed at h = 0.1507
-  -- (one thread) and 0.175 (two).
+  -- threads (9357 and 9382 steps).
   local ok, err = pcall(function()
     while top.position > 0.15 do
       w:step()
@@ -100,10 +97,10 @@ end)
 -- Walls the fluid does not reach are no unknowns (src/pressure.c, mark_unknowns). A block
 -- held 4 dx above a plate: the plate's walls in the 3 x 3 cells around the fluid are
 -- active, but those beyond the kernel's support (3 dx) of every fluid particle are
--- coupled only among themselves; before, they were unknowns, a singular block. And the
--- case that found it: Re = 1000 with the difference-form gradient stopped at step 1450
--- (t = 0.274) on a pressure solve that did not converge (the cycle not positive definite
--- under 18 such walls); now it runs on (measured: to t = 0.4, 1910 steps).
+-- coupled only among themselves: as unknowns they would be a singular block. And the case
+-- that needs it: Re = 1000 with the difference-form gradient, where such walls (18 under
+-- the sheet thrown off the contact line, near t = 0.27) make the multigrid cycle indefinite
+-- and the pressure solve fail (measured with them left out: to t = 0.4, 1910 steps).
 T.case("walls out of the fluid's reach are left out of the pressure system", function()
   local sph = require "sph"
   local dx = 1 / 20

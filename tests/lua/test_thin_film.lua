@@ -3,13 +3,12 @@
 -- the thin-film options density_correction = "gmres" and pressure_gradient = "difference"
 -- (pressure.c). Measured (one thread): peak max density error 0.80 % over 627 steps (1.6 s),
 -- plate force / lubrication (F = mu V A^3 / h^6, A = 0.64) 0.86-0.88 at h = 0.175-0.17;
--- with the defaults of then the same film peaked at 3.57 % (the passes' step length falls to
--- 0; since the density descent, 0.80 %: session 18's defaults 549 steps, F 0.83 x), with
--- GMRES alone at 0.96 %, with the difference gradient alone at 7.8 %. At dx = 1/80 (16 rows)
--- the defaults' plate force runs away at h = 0.191 (a pressure mode alternating from step to
--- step); with both options the film reaches h = 0.17 with the error under 0.8 % (582 steps).
--- The limit is the stability suite's own (1 %); the force band is +-0.1 around the measured
--- 0.86-0.88 (the force is noisy step to step: 0.82-0.94 between h = 0.185 and 0.17).
+-- with GMRES alone the error peaks at 0.96 %, with the difference gradient alone at 7.8 %.
+-- At dx = 1/80 (16 rows) the defaults' plate force runs away at h = 0.191 (a pressure mode
+-- alternating from step to step); with both options the film reaches h = 0.17 with the
+-- error under 0.8 % (582 steps). The limit is the stability suite's own (1 %); the force
+-- band is +-0.1 around the measured 0.86-0.88 (the force is noisy step to step: 0.82-0.94
+-- between h = 0.185 and 0.17).
 local squeeze = require "sph.squeeze"
 local T = require "sph.test"
 local o = ... or {}
@@ -104,10 +103,8 @@ end)
 -- the max density error after a step averaged 0.557 % against 0.601 % with "symmetric",
 -- 219 steps above density_tol (0.5 %) against 243, 7 descent moves against 12 (the
 -- difference form everywhere: 0.610 %, 263 steps); on two threads (other round-off) the
--- same counts, 0.557 %. (Session 18's first version, back to the symmetric form after each
--- switch: 58 switches, 0.560 % / 0.568 % on one / two threads, 200 / 201 steps.)
--- The checks: the switch acts here, never with "symmetric", and leaves a lower error on
--- average (the gap, 7 %, against a round-off spread of 1.4 % in the first version's mean).
+-- same counts, 0.557 %. The checks: the switch acts here, never with "symmetric", and
+-- leaves a lower error on average (the gap, 7 %, is well over the round-off spread).
 T.case("film started thin, density_gradient = auto: the first pass takes the better direction", function()
   local function run(g)
     local w = squeeze.build{ dx = 1 / 40, Re = 1, Bn = 0, mode = "velocity", width = 1.6, height = 0.2, h_min = 0.17,

@@ -1,13 +1,13 @@
 -- No-slip walls in a thin channel: steady plane Poiseuille driven by a body force g = 1
 -- (rho = mu = 1) between fixed plates H = 0.175 apart, periodic in x, run to t = 1 (the
 -- viscous time H^2 / nu is 0.03): the flux per unit depth against g H^3 / (12 nu).
--- Measured (session 8, one thread; the same at -O1): with the default linear (Morris)
+-- Measured (one thread; the same at -O1): with the default linear (Morris)
 -- wall extrapolation 1.0557 at 7 rows (dx = 0.025) and 1.0186 at 14, 1.0092 at 28 (first
 -- order: an effective slip of about 0.065 dx); with wall = "curved" (the wall velocity
 -- extrapolated with the profile's curvature from the momentum balance, viscous.c) 1.0166
 -- and 1.0088 (and 1.0068 at 28 rows: what is left is mostly the Morris epsilon, the lattice
 -- Laplacian 0.6 % low). Tolerances: 0.005 around the measured ratios (the runs are 36-46
--- steps of a steady flow; the figures did not move between builds).
+-- steps of a steady flow, the same figures with either build).
 local sph = require "sph"
 local T = require "sph.test"
 local o = ... or {}
@@ -37,7 +37,7 @@ T.case("thin channel: flux against the exact Poiseuille flux", function()
 end)
 -- A drop of 3 x 3 particles (all on the free surface, p = 0) falls onto a plate under
 -- g = 10 with mu = 1e-3: the pressure holds none of its particles off the wall (plates.c,
--- sph_plate_contact). Measured: without the contact it went through the plate at step 39
+-- sph_plate_contact). Measured: without the contact it goes through the plate at step 39
 -- (t = 0.188); with it, it lands and rests 0.1 dx above the face (69 steps to t = 0.5,
 -- 231 contacts).
 T.case("a drop of free-surface particles lands on a plate instead of going through it", function()

@@ -195,8 +195,8 @@ static void test_ticks_and_ranges(void) {
     {
         /* any finite range ends with a few increasing ticks inside it: the widest spans
          * (hi - lo overflows), ranges far beyond 2^53 steps from 0; and a span too narrow
-         * for a normal step (below 1e-307: it used to underflow to 0 and the search spun
-         * forever) ends with none */
+         * for a normal step (below 1e-307, where the step underflows to 0 and a naive search
+         * never ends) ends with none */
         static const double r[][2] = {{-DBL_MAX, DBL_MAX}, {-1e308, 1e308}, {1e17, 1e17 + 16},
                                       {1e300, 1.000000000000001e300}, {-1, 1e-300}, {0, 1e-290}};
         for (size_t q = 0; q < sizeof r / sizeof r[0]; q++) {

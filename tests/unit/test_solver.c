@@ -234,8 +234,8 @@ int main(void) {
      * the same structure with other values (symmetric off-diagonals scaled by up to 10 %,
      * the diagonal by 1.2: still SPD), one hierarchy set up for the first. Each system's
      * solution must be bit for bit that of solving it alone (the first: plain PCG; the
-     * second: its values refreshed into the finest smoother, as viscous.c did before), on
-     * 1 and 2 threads, whichever system stops first. */
+     * second: its values refreshed into the finest smoother), on 1 and 2 threads, whichever
+     * system stops first. */
     for (int th = 1; th <= 2; th++) {
         int m = 128, n = m * m;
         sph_csr a = {0};
@@ -317,8 +317,8 @@ int main(void) {
         /* A singular, compatible system: the 5-point Laplacian with no Dirichlet row at all
          * (as a cluster of particles with no free-surface neighbour, the drops a Re = 1000
          * squeeze throws off), right-hand side of zero sum, 10 x 10: small enough for the
-         * direct coarse solve, whose last pivot came out negative (setup failed) before the
-         * pivot guard. AMG-PCG must set up and converge. */
+         * direct coarse solve, whose last pivot comes out negative without the pivot guard.
+         * AMG-PCG must set up and converge. */
         int m = 10, n = m * m;
         sph_csr a = {0};
         sph_csr_reserve(&a, n, 5 * n);
@@ -361,10 +361,10 @@ int main(void) {
     {
         /* A Dirichlet Poisson block (32 x 32) beside a separate cluster of four particles
          * with no Dirichlet neighbour (a 2 x 2 Neumann block, as a drop with no free-surface
-         * particle): the cluster's coarse unknown has a zero operator (the Re = 1000 squeeze
-         * stopped on "multigrid setup failed" at t = 0.375 with 8 density passes; on this
-         * matrix the smoother divided by that zero and CG broke down at once). Setup must
-         * succeed and CG converge for a compatible right-hand side. */
+         * particle, as a Re = 1000 squeeze throws off): the cluster's coarse unknown has a
+         * zero operator, and a smoother that divides by that zero makes CG break down at
+         * once (the squeeze then stops on "multigrid setup failed"). Setup must succeed and
+         * CG converge for a compatible right-hand side. */
         int m = 32, nb = m * m, n = nb + 4;
         sph_csr a = {0};
         build(&a, POISSON, m);
