@@ -30,8 +30,9 @@ ENGINE_OBJ := $(ENGINE_SRC:src/%.c=$(B)/%.o)
 BIND_OBJ   := $(BIND_SRC:src/%.c=$(B)/%.o)
 UNIT_SRC   := $(wildcard tests/unit/test_*.c)
 UNIT_BIN   := $(UNIT_SRC:tests/unit/%.c=$(B)/tests/%)
+EXAMPLE_BIN := $(patsubst examples/%.c,$(B)/examples/%,$(wildcard examples/*.c))
 
-all: $(B)/sph $(B)/libsph.a $(B)/libsph.so $(B)/sph.so $(UNIT_BIN)
+all: $(B)/sph $(B)/libsph.a $(B)/libsph.so $(B)/sph.so $(UNIT_BIN) $(EXAMPLE_BIN)
 
 $(B)/%.o: src/%.c | $(B)
 	$(CC) $(CFLAGS) -MMD -MP -c $< -o $@
@@ -56,6 +57,12 @@ $(B)/sph.so: $(BIND_OBJ) $(B)/libsph.a
 
 $(B)/tests/%: tests/unit/%.c tests/unit/unit.h $(B)/libsph.a | $(B)
 	@mkdir -p $(B)/tests
+	$(CC) $(CFLAGS) -Isrc -o $@ $< $(B)/libsph.a $(LDFLAGS) $(LDLIBS)
+
+# the C examples (examples/squeeze.c), against the tree's headers and libsph.a; the smoke
+# test tests/lua/test_examples.lua runs them
+$(B)/examples/%: examples/%.c $(B)/libsph.a | $(B)
+	@mkdir -p $(B)/examples
 	$(CC) $(CFLAGS) -Isrc -o $@ $< $(B)/libsph.a $(LDFLAGS) $(LDLIBS)
 
 $(B):

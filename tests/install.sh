@@ -3,11 +3,12 @@
 # (no root, a few seconds): the files land where they should (libsph.so with its soname,
 # sph.pc, the Lua module in the standard 5.4 layout); a C program builds with
 # `pkg-config --cflags --libs sph` against libsph.so and with the static flags against
-# libsph.a, and runs a step; a stock lua5.4 with LUA_CPATH / LUA_PATH into the prefix
+# libsph.a, and runs a step, and so does the installed examples/squeeze.c built with the
+# command its comment gives; a stock lua5.4 with LUA_CPATH / LUA_PATH into the prefix
 # requires "sph" and "sph.params" from it and runs a step; the installed host, with the
-# prefix copied elsewhere and the original removed, finds its helpers in the copy (not in
-# the build tree: package.path names no folder of it) and runs a short squeeze; make
-# uninstall leaves no file in the prefix; the same with DESTDIR staging.
+# prefix copied elsewhere and the original moved away, takes its helpers from the copy
+# (package.path names no folder of the build tree) and runs a short squeeze and an
+# installed example; make uninstall leaves no file in the prefix; the same with DESTDIR.
 # Usage: tests/install.sh [BUILD_DIR]   (CC from the environment, default cc)
 B=${1:-build}
 CC=${CC:-cc}
@@ -37,14 +38,15 @@ check "make install PREFIX=$prefix" mk install PREFIX="$prefix"
 
 files="bin/sph include/sph.h include/sph_pictures.h lib/libsph.a lib/libsph.so lib/$soname
        lib/libsph.so.$version lib/pkgconfig/sph.pc lib/lua/5.4/sph.so share/lua/5.4/sph/params.lua
-       share/lua/5.4/sph/squeeze.lua share/sph/scripts/squeeze.lua share/doc/sph/README.md
+       share/lua/5.4/sph/squeeze.lua share/sph/scripts/squeeze.lua share/sph/examples/README.md
+       share/sph/examples/squeeze_velocity.lua share/sph/examples/squeeze.c share/doc/sph/README.md
        share/doc/sph/docs/api.md"
 installed() { # every file of $files under the prefix; names the missing ones
     m=0
     for f in $files; do [ -e "$prefix/$f" ] || { echo "missing: $f"; m=1; }; done
     return $m
 }
-check "the headers, libraries, pkg-config file, Lua module and helpers, host, scripts and docs are installed" installed
+check "the headers, libraries, pkg-config file, Lua module and helpers, host, scripts, examples and docs are installed" installed
 check "libsph.so and $soname link to libsph.so.$version, whose soname is $soname" \
     sh -c "[ \"\$(readlink '$prefix/lib/libsph.so')\" = libsph.so.$version ] &&
            [ \"\$(readlink '$prefix/lib/$soname')\" = libsph.so.$version ] &&
@@ -80,13 +82,30 @@ check "it builds with the static flags against libsph.a (pkg-config --libs --sta
            ! readelf -d '$tmp/prog_static' | grep -q 'NEEDED.*libsph'"
 check "and runs a step without libsph.so" sh -c "'$tmp/prog_static' | grep -q '^100 particles, 1 step'"
 
+# the installed C example, built with the command its comment gives (with $CC)
+example_c() {
+    mkdir -p "$tmp/exc" && cp "$prefix/share/sph/examples/squeeze.c" "$tmp/exc/" || return 1
+    cmd=$(sed -n 's/^ \*   cc /'"$CC $san"' /p' "$tmp/exc/squeeze.c")
+    echo "$cmd"
+    [ -n "$cmd" ] && (cd "$tmp/exc" && eval "$cmd") &&
+        LD_LIBRARY_PATH="$prefix/lib" "$tmp/exc/squeeze" steps=2 threads=1 out="$tmp/exc/out" &&
+        [ -s "$tmp/exc/out/series.csv" ] && [ -s "$tmp/exc/out/yield.png" ]
+}
+check "the installed examples/squeeze.c builds with the command in its comment and runs" example_c
+# it draws a picture: cairo comes from sph.pc's Requires.private with --static
+example_c_static() {
+    $CC $san -std=c11 -O2 -o "$tmp/exc/squeeze_static" "$tmp/exc/squeeze.c" $(pkg-config --cflags sph) \
+        -Wl,--as-needed -Wl,-Bstatic -lsph -Wl,-Bdynamic $(pkg-config --libs --static sph) &&
+        ! readelf -d "$tmp/exc/squeeze_static" | grep -q 'NEEDED.*libsph' &&
+        "$tmp/exc/squeeze_static" steps=2 threads=1 out="$tmp/exc/out_static" && [ -s "$tmp/exc/out_static/yield.png" ]
+}
+check "and with the static flags against libsph.a (cairo from Requires.private), and runs" example_c_static
+
 # a stock lua5.4 with the standard 5.4 layout under the prefix (and nothing else) on its paths
 stock_lua() {
-    if [ -n "$san" ]; then # the sanitizers' runtime first, for a module built with them
-        LD_PRELOAD=$($CC -print-file-name=libasan.so); ASAN_OPTIONS=detect_leaks=0
-        export LD_PRELOAD ASAN_OPTIONS
-    fi
-    LUA_CPATH="$prefix/lib/lua/5.4/?.so" LUA_PATH="$prefix/share/lua/5.4/?.lua" lua5.4 -e '
+    pre=env # a module built with the sanitizers needs their runtime loaded first
+    [ -n "$san" ] && pre="env LD_PRELOAD=$($CC -print-file-name=libasan.so) ASAN_OPTIONS=detect_leaks=0"
+    $pre LUA_CPATH="$prefix/lib/lua/5.4/?.so" LUA_PATH="$prefix/share/lua/5.4/?.lua" lua5.4 -e '
         local sph = require "sph"
         local params = require "sph.params"
         local w = sph.world{ dx = 0.1, threads = 1 }
@@ -123,6 +142,9 @@ check "moved elsewhere, it takes them from its new prefix (never the build tree'
 check "and runs the installed squeeze script (t_end=0.01 dx=0.05)" \
     sh -c "'$tmp/moved/bin/sph' '$tmp/moved/share/sph/scripts/squeeze.lua' t_end=0.01 dx=0.05 threads=1 out='$tmp/sq' &&
            grep -q . '$tmp/sq/series.csv'"
+check "and an installed example that uses the helpers (cavity.lua, steps=2)" \
+    sh -c "'$tmp/moved/bin/sph' '$tmp/moved/share/sph/examples/cavity.lua' steps=2 threads=1 out='$tmp/cav' &&
+           [ -s '$tmp/cav/profiles.csv' ]"
 check "SPH_LUA_DIR still comes first" sh -c "SPH_LUA_DIR='$top/lua' '$tmp/moved/bin/sph' '$tmp/where.lua' | grep -qx '$top/lua/sph/params.lua'"
 check "the build tree's host takes the build tree's lua/" where_ok "$top/$B/sph" "$top/lua"
 rm -rf "$tmp/moved"; mv "$tmp/away" "$prefix"
