@@ -3,6 +3,11 @@ CC      ?= cc
 PKGS    := lua5.4 cairo
 PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS))
 PKG_LIBS   := $(shell pkg-config --libs $(PKGS))
+CAIRO_LIBS := $(shell pkg-config --libs cairo)
+# the version (src/sph.h) and the shared library's soname: libsph.so.MAJOR
+VERSION := $(shell sed -n 's/.*define SPH_VERSION "\(.*\)".*/\1/p' src/sph.h)
+SOMAJOR := $(firstword $(subst ., ,$(VERSION)))
+SONAME  := libsph.so.$(SOMAJOR)
 WARN    := -Wall -Wextra -Wshadow -Wstrict-prototypes -Wmissing-prototypes \
            -Wmissing-declarations -Wundef -Wpointer-arith -Wwrite-strings -Wno-unknown-pragmas
 OPT     ?= -O2 -march=x86-64-v2
@@ -13,8 +18,10 @@ ifeq ($(SANITIZE),1)
   B       := build-san
   CFLAGS  += -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
   LDFLAGS += -fsanitize=address,undefined
+  SO_DEFS :=
 else
   B       := build
+  SO_DEFS := -Wl,-z,defs
 endif
 
 ENGINE_SRC := $(filter-out src/main.c src/l%.c,$(wildcard src/*.c))
@@ -23,14 +30,24 @@ ENGINE_OBJ := $(ENGINE_SRC:src/%.c=$(B)/%.o)
 BIND_OBJ   := $(BIND_SRC:src/%.c=$(B)/%.o)
 UNIT_SRC   := $(wildcard tests/unit/test_*.c)
 UNIT_BIN   := $(UNIT_SRC:tests/unit/%.c=$(B)/tests/%)
+EXAMPLE_BIN := $(patsubst examples/%.c,$(B)/examples/%,$(wildcard examples/*.c))
 
-all: $(B)/sph $(B)/libsph.a $(B)/sph.so $(UNIT_BIN)
+all: $(B)/sph $(B)/libsph.a $(B)/libsph.so $(B)/sph.so $(UNIT_BIN) $(EXAMPLE_BIN)
 
 $(B)/%.o: src/%.c | $(B)
 	$(CC) $(CFLAGS) -MMD -MP -c $< -o $@
 
 $(B)/libsph.a: $(ENGINE_OBJ)
 	$(AR) rcs $@ $^
+
+# the engine and the pictures as a shared library: libsph.so.VERSION, soname libsph.so.MAJOR,
+# needing cairo, libm and OpenMP's runtime (-z defs: nothing left undefined)
+$(B)/libsph.so.$(VERSION): $(ENGINE_OBJ)
+	$(CC) $(LDFLAGS) -shared -Wl,-soname,$(SONAME) $(SO_DEFS) -o $@ $^ $(CAIRO_LIBS) -lm -fopenmp
+
+$(B)/libsph.so: $(B)/libsph.so.$(VERSION)
+	ln -sf libsph.so.$(VERSION) $(B)/$(SONAME)
+	ln -sf libsph.so.$(VERSION) $@
 
 $(B)/sph: $(B)/main.o $(BIND_OBJ) $(B)/libsph.a
 	$(CC) $(LDFLAGS) -o $@ $(B)/main.o $(BIND_OBJ) $(B)/libsph.a $(LDLIBS) -Wl,-E
@@ -40,6 +57,12 @@ $(B)/sph.so: $(BIND_OBJ) $(B)/libsph.a
 
 $(B)/tests/%: tests/unit/%.c tests/unit/unit.h $(B)/libsph.a | $(B)
 	@mkdir -p $(B)/tests
+	$(CC) $(CFLAGS) -Isrc -o $@ $< $(B)/libsph.a $(LDFLAGS) $(LDLIBS)
+
+# the C examples (examples/squeeze.c), against the tree's headers and libsph.a; the smoke
+# test tests/lua/test_examples.lua runs them
+$(B)/examples/%: examples/%.c $(B)/libsph.a | $(B)
+	@mkdir -p $(B)/examples
 	$(CC) $(CFLAGS) -Isrc -o $@ $< $(B)/libsph.a $(LDFLAGS) $(LDLIBS)
 
 $(B):
@@ -73,18 +96,61 @@ validate: all
 # The headers a C user needs: sph.h (the engine, C library only) and sph_pictures.h (render,
 # plot, animate; plain data in, PNG out: link with cairo). pictures_cairo.h is internal.
 PUBLIC_HEADERS := src/sph.h src/sph_pictures.h
-PREFIX ?= /usr/local
+# make install [PREFIX=/usr/local] [DESTDIR=]: the library (headers, libsph.a, libsph.so,
+# sph.pc), the Lua module where a stock lua5.4 looks under PREFIX (lib/lua/5.4/sph.so,
+# share/lua/5.4/sph/*.lua), the host (bin/sph: it finds the helpers at ../share/lua/5.4 from
+# its own path, src/main.c), the scripts and examples (share/sph) and the docs
+# (share/doc/sph). make uninstall removes those files (the same lists: run it from the same
+# source tree) and the folders that are sph's own, when empty.
+PREFIX  ?= /usr/local
+DESTDIR ?=
+bindir       := $(PREFIX)/bin
+libdir       := $(PREFIX)/lib
+includedir   := $(PREFIX)/include
+pkgconfigdir := $(libdir)/pkgconfig
+luacdir      := $(libdir)/lua/5.4
+luadir       := $(PREFIX)/share/lua/5.4
+sharedir     := $(PREFIX)/share/sph
+docdir       := $(PREFIX)/share/doc/sph
+LUA_FILES      := $(wildcard lua/sph/*.lua)
+SCRIPT_FILES   := $(wildcard scripts/*.lua)
+EXAMPLE_FILES  := $(wildcard examples/*.lua examples/*.c examples/README.md)
+DOC_FILES      := $(wildcard docs/*.md docs/*.png)
+D := $(DESTDIR)
 install: all
-	install -d $(PREFIX)/bin $(PREFIX)/lib $(PREFIX)/include $(PREFIX)/share/lua/5.4/sph
-	install -m 755 $(B)/sph $(PREFIX)/bin/sph
-	install -m 644 $(B)/libsph.a $(PREFIX)/lib/
-	install -m 644 $(PUBLIC_HEADERS) $(PREFIX)/include/
-	install -d $(PREFIX)/lib/lua/5.4
-	install -m 755 $(B)/sph.so $(PREFIX)/lib/lua/5.4/sph.so
-	install -m 644 lua/sph/*.lua $(PREFIX)/share/lua/5.4/sph/
+	install -d $(D)$(bindir) $(D)$(libdir) $(D)$(includedir) $(D)$(pkgconfigdir) $(D)$(luacdir) \
+	    $(D)$(luadir)/sph $(D)$(sharedir)/scripts $(D)$(sharedir)/examples $(D)$(docdir)/docs
+	install -m 755 $(B)/sph $(D)$(bindir)/sph
+	install -m 644 $(PUBLIC_HEADERS) $(D)$(includedir)/
+	install -m 644 $(B)/libsph.a $(D)$(libdir)/libsph.a
+	install -m 755 $(B)/libsph.so.$(VERSION) $(D)$(libdir)/libsph.so.$(VERSION)
+	ln -sf libsph.so.$(VERSION) $(D)$(libdir)/$(SONAME)
+	ln -sf libsph.so.$(VERSION) $(D)$(libdir)/libsph.so
+	printf '%s\n' 'prefix=$(PREFIX)' 'libdir=$(libdir)' 'includedir=$(includedir)' '' \
+	    'Name: sph' 'Description: incompressible SPH for viscoplastic flows (engine and pictures)' \
+	    'Version: $(VERSION)' 'Requires.private: cairo' 'Cflags: -I$${includedir}' \
+	    'Libs: -L$${libdir} -lsph' 'Libs.private: -lm -fopenmp' >$(D)$(pkgconfigdir)/sph.pc
+	chmod 644 $(D)$(pkgconfigdir)/sph.pc
+	install -m 755 $(B)/sph.so $(D)$(luacdir)/sph.so
+	install -m 644 $(LUA_FILES) $(D)$(luadir)/sph/
+	install -m 644 $(SCRIPT_FILES) $(D)$(sharedir)/scripts/
+	$(if $(EXAMPLE_FILES),install -m 644 $(EXAMPLE_FILES) $(D)$(sharedir)/examples/)
+	install -m 644 README.md $(D)$(docdir)/README.md
+	install -m 644 $(DOC_FILES) $(D)$(docdir)/docs/
+
+uninstall:
+	rm -f $(D)$(bindir)/sph $(addprefix $(D)$(includedir)/,$(notdir $(PUBLIC_HEADERS))) \
+	    $(D)$(libdir)/libsph.a $(D)$(libdir)/libsph.so.$(VERSION) $(D)$(libdir)/$(SONAME) \
+	    $(D)$(libdir)/libsph.so $(D)$(pkgconfigdir)/sph.pc $(D)$(luacdir)/sph.so
+	rm -f $(addprefix $(D)$(luadir)/sph/,$(notdir $(LUA_FILES)))
+	rm -f $(addprefix $(D)$(sharedir)/scripts/,$(notdir $(SCRIPT_FILES)))
+	rm -f $(addprefix $(D)$(sharedir)/examples/,$(notdir $(EXAMPLE_FILES)))
+	rm -f $(D)$(docdir)/README.md $(addprefix $(D)$(docdir)/docs/,$(notdir $(DOC_FILES)))
+	for d in $(D)$(luadir)/sph $(D)$(sharedir)/scripts $(D)$(sharedir)/examples $(D)$(sharedir) \
+	         $(D)$(docdir)/docs $(D)$(docdir); do [ ! -d "$$d" ] || rmdir "$$d" 2>/dev/null || true; done
 
 clean:
 	rm -rf build build-san
 
-.PHONY: all test check bench stability validate install clean
+.PHONY: all test check bench stability validate install uninstall clean
 -include $(wildcard $(B)/*.d)

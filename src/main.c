@@ -7,7 +7,10 @@
  * ends, then w:step / w:run raise "interrupted (SIGINT) at t = ..., step ..." (lsph.c),
  * which a script can catch to write its outputs and a state (scripts/squeeze.lua). The
  * host then exits with status 128 + the signal (130, 143). A script busy in Lua alone
- * (no step) sees the signal at its next step, or the host's exit status at its end. */
+ * (no step) sees the signal at its next step, or the host's exit status at its end.
+ * The Lua helpers (require "sph.params" ...) come from $SPH_LUA_DIR, else from
+ * PREFIX/share/lua/5.4 next to an installed PREFIX/bin/sph, else from the build tree's lua/
+ * (lua_dir below). */
 #include "lsph.h"
 #include "sph.h"
 #include "sph_pictures.h"
@@ -62,10 +65,43 @@ static int traceback(lua_State *L) {
     return 1;
 }
 
-/* package.path: the project's lua/ (or $SPH_LUA_DIR) and the script's folder first. */
-static void set_path(lua_State *L, const char *script) {
-    const char *dir = getenv("SPH_LUA_DIR");
-    if (!dir) dir = SPH_LUA_DIR;
+/* The folder of the Lua helpers (sph/params.lua, sph/squeeze.lua, ...), first found of:
+ *   $SPH_LUA_DIR;
+ *   PREFIX/share/lua/5.4, for a host installed as PREFIX/bin/sph (`make install`): found from
+ *   the executable's own path (/proc/self/exe, else argv[0] when it holds a slash), so an
+ *   installed tree, moved or copied elsewhere, still finds its own helpers and never the
+ *   build tree's;
+ *   the build tree's lua/, compiled in (SPH_LUA_DIR): the host run from build/.
+ * A candidate counts when it holds sph/params.lua. */
+static const char *lua_dir(const char *argv0, char *buf, size_t n) {
+    const char *env = getenv("SPH_LUA_DIR");
+    if (env) return env;
+    char exe[4096];
+    ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (len > 0) exe[len] = 0;
+    else if (argv0 && strchr(argv0, '/')) snprintf(exe, sizeof exe, "%s", argv0); /* no /proc */
+    else exe[0] = 0;
+    char *slash = strrchr(exe, '/'); /* exe = PREFIX/bin/sph: drop "/sph", then "/bin" */
+    if (slash) {
+        *slash = 0;
+        slash = strrchr(exe, '/');
+        const char *prefix = exe;
+        if (slash) *slash = 0;
+        else prefix = "."; /* argv[0] = bin/sph */
+        int k = snprintf(buf, n, "%s/share/lua/5.4", prefix);
+        char probe[4200];
+        if (k > 0 && (size_t)k < n) {
+            snprintf(probe, sizeof probe, "%s/sph/params.lua", buf);
+            if (access(probe, R_OK) == 0) return buf;
+        }
+    }
+    return SPH_LUA_DIR;
+}
+
+/* package.path: the helpers' folder (lua_dir) and the script's folder first. */
+static void set_path(lua_State *L, const char *argv0, const char *script) {
+    char buf[4096];
+    const char *dir = lua_dir(argv0, buf, sizeof buf);
     char sdir[4096];
     snprintf(sdir, sizeof sdir, "%s", script);
     char *slash = strrchr(sdir, '/');
@@ -90,7 +126,7 @@ static int run(lua_State *L) {
     luaL_openlibs(L);
     luaL_requiref(L, "sph", luaopen_sph, 0);
     lua_pop(L, 1);
-    set_path(L, argv[1]);
+    set_path(L, argv[0], argv[1]);
     lua_createtable(L, argc, 1); /* arg, as in lua.c */
     for (int i = 0; i < argc; i++) {
         lua_pushstring(L, argv[i]);

@@ -1,5 +1,6 @@
 #!/bin/sh
-# The one test runner: the public headers (tests/headers.sh, with $CC), C unit tests
+# The one test runner: the public headers (tests/headers.sh, with $CC), make install
+# (tests/install.sh), C unit tests
 # (build/tests/test_*) and Lua tests (tests/lua/*.lua, run by the sph host). Every check prints "ok - ..." or "not ok - ..."; a program that
 # exits non-zero without a "not ok" line counts as one failure. Ends with the summary line.
 B=${1:-build}
@@ -26,6 +27,8 @@ run() {
 }
 # the public headers need only the C library; libsph.a links without cairo or Lua
 run headers.sh sh "$top/tests/headers.sh" "$B"
+# make install / uninstall into a temporary prefix, used as a C library, a Lua module, a host
+run install.sh sh "$top/tests/install.sh" "$B"
 for t in "$top/$B"/tests/test_*; do
     [ -x "$t" ] || continue
     run "$(basename "$t")" "$t"
