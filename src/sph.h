@@ -303,8 +303,32 @@ const char *const *sph_world_field_names(void);
  * 0 to keep that component): initial conditions such as the Taylor-Green vortex. */
 int sph_world_set_velocity(sph_world *w, const double *u, const double *v);
 
-/* Output. 0 or -1 with a message. */
+/* Output. 0 or -1 with a message. Every file is written whole or not at all (a temporary
+ * file renamed into place). All of them hold every particle, fluid and wall, with the
+ * names of sph_world_field: id, kind (0 fluid, k the walls of plate k), u, v, p, rho, eta,
+ * gammadot, stress, yielded, surface, material (0 for walls); the VTK files add the vector
+ * velocity = (u, v, 0) and give x, y as the points.
+ * CSV: a header line and one row per particle: id,kind,x,y,u,v,... in that order.
+ * Legacy VTK: ASCII polydata of vertices. */
 int sph_world_write_csv(sph_world *w, const char *file);
 int sph_world_write_vtk(sph_world *w, const char *file);
+
+/* VTK XML unstructured grid (.vtu) of vertex cells, binary little-endian data. */
+typedef struct sph_vtu_options {
+    int appended; /* 0: inline base64 data (format="binary"); 1: raw appended data     */
+    int header64; /* 1: header_type UInt64 (the default); 0: UInt32                    */
+    int mirror;   /* 1: also the mirror images across the symmetry planes (positions
+                     reflected, the velocity component normal to the plane negated, ids
+                     offset by the world's id count, so distinct); default 1 when the
+                     world has a symmetry plane */
+} sph_vtu_options;
+void sph_vtu_defaults(const sph_world *w, sph_vtu_options *o);
+/* o NULL: the defaults. */
+int sph_world_write_vtu(sph_world *w, const char *file, const sph_vtu_options *o);
+/* A ParaView collection (.pvd): n data files with their times, one animation. File
+ * names as given (relative ones are read relative to the .pvd's folder). 0, or -1 with a
+ * message in err. */
+int sph_write_pvd(const char *file, size_t n, const double *t, const char *const *files, char *err,
+                  size_t errlen);
 
 #endif

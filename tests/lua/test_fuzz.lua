@@ -1,5 +1,5 @@
 -- A fuzz test of the Lua API (issue 27 E): random calls on worlds, plates, materials,
--- fields, states, CSV / VTK, render, plot and animate, with random and bad arguments, each
+-- fields, states, CSV / VTK / VTU / PVD, render, plot and animate, with random and bad arguments, each
 -- in pcall. It passes when nothing crashes (the process ends: run.sh counts a crash as a
 -- failure) and every error raised is a non-empty Lua string. A fixed seed in `make test`
 -- (5,000 calls, a second or two); `make check` runs 30,000 calls under the sanitizers with
@@ -245,6 +245,20 @@ local ops = {
   end },
   { "w:write_vtk", function()
     return a_world():write_vtk(out_file("f.vtk"))
+  end },
+  { "w:write_vtu", function()
+    local o = R() < 0.5 and nil or options({ "encoding", "header_type", "mirror" }, {
+      encoding = function() return pick{ "base64", "raw", "ascii" } end,
+      header_type = function() return pick{ "UInt32", "UInt64", "Int8" } end,
+      mirror = function() return R() < 0.5 end })
+    return a_world():write_vtu(out_file("f.vtu"), o)
+  end },
+  { "sph.pvd_write", function()
+    local list = {}
+    for k = 1, R(0, 4) do
+      list[k] = R() < 0.8 and { t = R() < 0.9 and number() or value(), file = R() < 0.9 and pick(STRINGS) or value() } or value()
+    end
+    return sph.pvd_write(out_file("s.pvd"), R() < 0.9 and list or value())
   end },
   { "w:save", function()
     local f = dir .. "/s" .. R(3) .. ".bin"
