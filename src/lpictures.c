@@ -88,6 +88,13 @@ static int result(lua_State *L, int rc, const char *err) {
 
 /* ---- w:render{...} -------------------------------------------------------------- */
 
+/* a label that shows its own time: "t", optional spaces, "=" at its start */
+static int has_time(const char *s) {
+    if (*s != 't') return 0;
+    for (s++; *s == ' '; s++) {}
+    return *s == '=';
+}
+
 static int w_render(lua_State *L) {
     static const char *const keys[] = {"file",  "width", "height", "color",  "view",     "colorbar",
                                        "label", "range", "mirror", "radius", "colormap", 0};
@@ -137,22 +144,31 @@ static int w_render(lua_State *L) {
             luaL_error(L, "bad argument to 'render' (range: need vmin <= vmax, got {%f, %f})", range[0], range[1]);
         s.autorange = 0, s.vmin = range[0], s.vmax = range[1];
     }
-    s.colorbar = opt_bool(L, 2, "render", "colorbar", 1);
+    /* colorbar: a colour bar for a field (default on), the legend of the two colours for
+     * "yield" (default off) */
+    s.colorbar = opt_bool(L, 2, "render", "colorbar", !yield);
+    s.legend = yield && s.colorbar;
     s.mirror = opt_bool(L, 2, "render", "mirror", par->symmetry[0] != 0);
     s.mirror_x = par->symmetry[0] ? par->sym_at[0] : 0;
     s.radius = sph_lua_opt_number(L, 2, "render", "radius", 0.55 * par->dx);
     if (!(s.radius > 0 && isfinite(s.radius)))
         luaL_error(L, "bad argument to 'render' (radius: positive number expected, got %f)", s.radius);
 
-    /* label: true → "t = ...", a string → "t = ...   string", false/nil → none */
+    /* label: true → "t = ...", a string → "t = ...   string", false/nil → none. The time
+     * shows once: a string that begins with its own time ("t = 0.5 ...", "t=0.5") is drawn
+     * as given, not after a second one. */
     int lt = lua_getfield(L, 2, "label");
     if (lt != LUA_TNIL && lt != LUA_TBOOLEAN && lt != LUA_TSTRING)
         luaL_error(L, "bad argument to 'render' (label: boolean or string expected, got %s)", luaL_typename(L, -1));
     if (lt == LUA_TSTRING || lua_toboolean(L, -1)) {
         char t[64];
         snprintf(t, sizeof t, "%.4g", sph_world_time(w));
-        if (lt == LUA_TSTRING && *lua_tostring(L, -1))
-            lua_pushfstring(L, "t = %s   %s", t, lua_tostring(L, -1));
+        const char *user = lt == LUA_TSTRING ? lua_tostring(L, -1) : "";
+        while (*user == ' ') user++;
+        if (has_time(user))
+            lua_pushstring(L, user);
+        else if (*user)
+            lua_pushfstring(L, "t = %s   %s", t, user);
         else
             lua_pushfstring(L, "t = %s", t);
         s.label = lua_tostring(L, -1); /* anchored on the stack until we return */

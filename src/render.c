@@ -52,6 +52,40 @@ static int has_label(const sph_render_spec *s) { return s->label && *s->label; }
 
 static int has_colorbar(const sph_render_spec *s) { return scalar_mode(s) && s->colorbar; }
 
+static int has_legend(const sph_render_spec *s) { return !scalar_mode(s) && s->legend; }
+
+static const char *const legend_text[2] = {"yielded", "unyielded"};
+static const int legend_category[2] = {SPH_RENDER_YIELDED, SPH_RENDER_UNYIELDED};
+
+static void set_font(cairo_t *cr, double fs) {
+    cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, fs);
+}
+
+/* Widths of the label and of each legend entry's text, in pixels, measured with the font
+   they are drawn in (on a scratch surface, so the layout needs no picture). */
+static void text_widths(const sph_render_spec *s, double fs, double *label, double entry[2]) {
+    cairo_surface_t *scratch = cairo_image_surface_create(CAIRO_FORMAT_A8, 1, 1);
+    cairo_t *cr = cairo_create(scratch);
+    cairo_text_extents_t te;
+    int k;
+    set_font(cr, fs);
+    *label = 0, entry[0] = entry[1] = 0;
+    if (has_label(s)) {
+        cairo_text_extents(cr, s->label, &te);
+        *label = te.x_advance;
+    }
+    for (k = 0; k < 2; k++) {
+        cairo_text_extents(cr, legend_text[k], &te);
+        entry[k] = te.x_advance;
+    }
+    cairo_destroy(cr);
+    cairo_surface_destroy(scratch);
+}
+
+/* The legend's geometry: swatch side, gap from swatch to text, space between entries. */
+static double swatch_px(double fs) { return floor(0.9 * fs); }
+
 /* Grow box b (x0, y0, x1, y1) to hold [x0, x1] x [y0, y1]. */
 static void grow(double b[4], double x0, double y0, double x1, double y1) {
     b[0] = fmin(b[0], x0), b[1] = fmin(b[1], y0);
@@ -147,7 +181,18 @@ int sph_render_layout(const sph_render_spec *s, sph_render_frame *f, char *err, 
         fit_view(s, v);
     }
     fs = font_px(s);
-    top = has_label(s) ? ceil(1.6 * fs) : 0;
+    top = has_label(s) || has_legend(s) ? ceil(1.6 * fs) : 0;
+    if (has_legend(s)) {
+        /* right-aligned on the label's line; on a second line when the two do not fit */
+        double lw, ew[2], sw = swatch_px(fs), line = 0;
+        text_widths(s, fs, &lw, ew);
+        f->legend[2] = 2 * (sw + 0.4 * fs) + ew[0] + ew[1] + fs;
+        if (has_label(s) && pad + lw + 1.5 * fs + f->legend[2] > s->width - pad)
+            line = ceil(1.6 * fs), top += line;
+        f->legend[0] = floor(fmax(pad, s->width - pad - f->legend[2]));
+        f->legend[1] = line + floor(0.39 * fs); /* text on the label's baseline, 1.2 fs */
+        f->legend[3] = sw;
+    }
     right = has_colorbar(s) ? ceil(7 * fs) : 0;
     aw = s->width - right - 2 * pad, ah = s->height - top - 2 * pad;
     if (aw < 2 || ah < 2)
@@ -336,6 +381,28 @@ static void draw_colorbar(const sph_render_spec *s, const sph_render_frame *f, c
     }
 }
 
+/* Two swatches of the yield colours, outlined, each followed by its name. */
+static void draw_legend(const sph_render_frame *f, cairo_t *cr, double fs) {
+    double x = f->legend[0], y = f->legend[1], sw = f->legend[3], rgb[3];
+    int k;
+    cairo_set_line_width(cr, 1);
+    for (k = 0; k < 2; k++) {
+        cairo_text_extents_t te;
+        sph_render_category_color(legend_category[k], rgb);
+        cairo_rectangle(cr, x, y, sw, sw);
+        cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
+        cairo_fill(cr);
+        cairo_rectangle(cr, x - 0.5, y - 0.5, sw + 1, sw + 1); /* just outside: the swatch stays pure */
+        cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
+        cairo_stroke(cr);
+        cairo_set_source_rgb(cr, 0, 0, 0);
+        cairo_move_to(cr, x + sw + 0.4 * fs, y + 0.5 * sw + 0.36 * fs);
+        cairo_show_text(cr, legend_text[k]);
+        cairo_text_extents(cr, legend_text[k], &te);
+        x += sw + 0.4 * fs + te.x_advance + fs;
+    }
+}
+
 int sph_render_draw(const sph_render_spec *s, cairo_t *cr, char *err, size_t errlen) {
     sph_render_frame f;
     double fs = font_px(s);
@@ -357,13 +424,14 @@ int sph_render_draw(const sph_render_spec *s, cairo_t *cr, char *err, size_t err
     }
     draw_plates(s, &f, cr);
     cairo_restore(cr);
-    cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-    cairo_set_font_size(cr, fs);
+    set_font(cr, fs);
     cairo_set_source_rgb(cr, 0, 0, 0);
     if (has_label(s)) {
         cairo_move_to(cr, f.area[0], 1.2 * fs);
         cairo_show_text(cr, s->label);
     }
+    if (has_legend(s))
+        draw_legend(&f, cr, fs);
     if (has_colorbar(s))
         draw_colorbar(s, &f, cr, fs);
     cairo_restore(cr);

@@ -54,10 +54,15 @@ typedef struct sph_render_spec {
     int autorange;                 /* 1: [vmin, vmax] = range of the finite values */
     double vmin, vmax;             /* fixed range when autorange == 0; equal ends widen */
     int colorbar;                  /* scalar mode: draw a colour bar at the right */
+    int legend;                    /* yield mode: a legend of the two colours, "yielded" and
+                                      "unyielded", at the right of the band above the picture
+                                      (the label's line, or a line of its own under it when
+                                      both do not fit) */
     const char *field;             /* colour bar title (e.g. "p"); NULL: none */
     const double *plates;          /* nplates rectangles, 4 doubles each: x0, y0, x1, y1 */
     size_t nplates;                /* drawn filled grey over the particles */
-    const char *label;             /* text above the picture (e.g. "t = 0.500"); NULL: none */
+    const char *label;             /* text above the picture (e.g. "t = 0.500"), drawn as
+                                      given; NULL: none */
     int mirror;                    /* 1: also draw everything reflected about x = mirror_x */
     double mirror_x;               /* (half-domain runs with a symmetry plane) */
     int view_set;                  /* 1: show view; 0: fit particles, plates and mirror */
@@ -73,9 +78,11 @@ typedef struct sph_render_frame {
     double ox, oy;     /* pixel = (ox + scale * x, oy - scale * y) */
     double radius_px;  /* disc radius as drawn */
     double vmin, vmax; /* resolved scalar range (scalar mode) */
+    double legend[4];  /* the yield legend in pixels: x, y, w, h (all 0 without one) */
 } sph_render_frame;
 
-/* Defaults: 800 x 400, autorange, colour bar on, everything else off/NULL. */
+/* Defaults: 800 x 400, autorange, colour bar on (scalar mode), everything else off/NULL
+   (no legend). */
 void sph_render_defaults(sph_render_spec *s);
 /* Fill colour of a category (grey for unknown ones). */
 void sph_render_category_color(int category, double rgb[3]);
