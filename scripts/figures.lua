@@ -41,11 +41,13 @@ for _, Bn in ipairs{ 2, 5 } do
   local pad = 0.02 * (t[4] - b[2])
   local view = { -half, b[2] - pad, half, t[4] + pad }
   local function opts(file, wd)
-    return { file = file, width = wd, mirror = true, view = view,
+    return { file = file, width = wd, mirror = true, view = view, colorbar = true, -- the yield legend
              height = math.max(120, math.floor(wd * (view[4] - view[2]) / (view[3] - view[1])) + 40),
              label = string.format("Bn=%g  Re=%g  F=%g  M=%g  dx=%g", Bn, Re, F, M, dx) }
   end
-  local ts, hs = { 0 }, { top.position }
+  -- the gap at every output, t = 0 included (each runs at the start of the first run; the
+  -- later ones continue the output grid t0 = 0, so no time comes twice)
+  local ts, hs = {}, {}
   local stills, anim = {}, {}
   local targets = {} -- every time at which something is drawn, in order
   for _, tk in ipairs(times) do targets[#targets + 1] = { t = tk, still = true } end
@@ -54,7 +56,7 @@ for _, Bn in ipairs{ 2, 5 } do
   local wall0 = os.time()
   for _, g in ipairs(targets) do
     if g.t > w.t + 1e-12 then
-      w:run{ until_t = g.t, every = every, each = function(ww) ts[#ts + 1], hs[#hs + 1] = ww.t, top.position end }
+      w:run{ until_t = g.t, every = every, t0 = 0, each = function(ww) ts[#ts + 1], hs[#hs + 1] = ww.t, top.position end }
     end
     if g.still then
       local f = string.format("%s/load_bn%g_t%04d.png", out, Bn, math.floor(g.t * 1000 + 0.5))

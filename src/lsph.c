@@ -503,6 +503,19 @@ static void progress(sph_world *w, double t_end, double wall0, int final) {
     fflush(stderr);
 }
 
+/* run's each (at stack index each; nil: none) on the world at index 1: 1 when it returned
+ * false (stop), else 0. *w is the world again after the call (which may close it). */
+static int call_each(lua_State *L, int each, sph_world **w) {
+    if (lua_isnil(L, each)) return 0;
+    lua_pushvalue(L, each);
+    lua_pushvalue(L, 1);
+    lua_call(L, 1, 1);
+    *w = world_after_call(L, 1, "w:run (in its each function)");
+    int stop = lua_isboolean(L, -1) && !lua_toboolean(L, -1);
+    lua_pop(L, 1);
+    return stop;
+}
+
 static int w_run(lua_State *L) {
     lworld *lw = check_world(L, 1);
     static const char *const keys[] = {"until_t", "every", "each", "progress", "dt", "t0", 0};
@@ -540,6 +553,12 @@ static int w_run(lua_State *L) {
         while (t0 + k * every <= now + eps) k++;
     }
     double next_out = every > 0 ? t0 + k * every : INFINITY;
+    /* the output at the grid's origin, before the first step: a series gets its t0 row.
+     * A run continued past t0 (t0 given, earlier than now) had it in the run before. */
+    if (every > 0 && fabs(sph_world_time(w) - t0) <= eps && call_each(L, each, &w)) {
+        lua_pushvalue(L, 1);
+        return 1;
+    }
     while (sph_world_time(w) < until_t - eps) {
         double now = sph_world_time(w);
         w = apply_laws(L, 1, now, "w:run (in a plate law)");
@@ -560,15 +579,7 @@ static int w_run(lua_State *L) {
         if (sph_world_time(w) >= next_out - eps) {
             k++;
             next_out = t0 + k * every;
-            if (each && !lua_isnil(L, each)) {
-                lua_pushvalue(L, each);
-                lua_pushvalue(L, 1);
-                lua_call(L, 1, 1);
-                w = world_after_call(L, 1, "w:run (in its each function)");
-                int stop = lua_isboolean(L, -1) && !lua_toboolean(L, -1);
-                lua_pop(L, 1);
-                if (stop) break;
-            }
+            if (call_each(L, each, &w)) break;
         }
         if (show && omp_get_wtime() - last > 0.25) {
             progress(w, until_t, wall0, 0);

@@ -252,7 +252,7 @@ local taylor_green = {
     for i = 1, #xs do u0[i], v0[i] = F.taylor_green_exact(xs[i], ys[i], 0) end
     w:set_velocity(u0, v0)
     local ke0 = w:stats().kinetic_energy
-    local ts, lk = { 0 }, { 0 }
+    local ts, lk = {}, {} -- w:run's each gives the t = 0 point (log 1 = 0) too
     local t_end = opts.t_end or 1
     w:run{ until_t = t_end, every = opts.every or 0.1, each = function(w)
       ts[#ts + 1], lk[#lk + 1] = w.t, math.log(w:stats().kinetic_energy / ke0)

@@ -429,14 +429,26 @@ T.case("run schedule", function()
   local w = sph.world{ dx = 0.1 }
   w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
   w:plate{ rect = { -1, -0.3, 2, 0 } }
-  local times = {}
-  w:run{ until_t = 0.05, every = 0.01, each = function(ww) times[#times + 1] = ww.t end }
-  T.check(#times == 5, "run calls each at every output time", #times .. " calls")
-  T.close(times[5] or 0, 0.05, 1e-12, "run lands on the output times")
+  local times, steps = {}, {}
+  w:run{ until_t = 0.05, every = 0.01, each = function(ww) times[#times + 1], steps[#steps + 1] = ww.t, ww.steps end }
+  T.check(#times == 6, "run calls each at the start and at every output time", #times .. " calls")
+  T.check(times[1] == 0 and steps[1] == 0, "the first call is at the start, before the first step",
+    tostring(times[1]) .. " " .. tostring(steps[1]))
+  T.close(times[6] or 0, 0.05, 1e-12, "run lands on the output times")
   T.close(w.t, 0.05, 1e-12, "run ends at until_t")
   local n = 0
+  local s0 = w.steps
   w:run{ until_t = 1, every = 0.01, each = function() n = n + 1; return false end }
-  T.check(n == 1, "each returning false stops the run")
+  T.check(n == 1 and w.steps == s0, "each returning false at the start stops the run before a step",
+    n .. " calls, " .. (w.steps - s0) .. " steps")
+  -- a run continued on an earlier grid (t0 before now) had its start output already
+  times = {}
+  w:run{ until_t = 0.07, every = 0.01, t0 = 0, each = function(ww) times[#times + 1] = ww.t end }
+  T.check(#times == 2 and math.abs(times[1] - 0.06) < 1e-12, "a run continued with t0 = 0 from t = 0.05 calls each at 0.06 and 0.07",
+    table.concat(times, " "))
+  n = 0
+  w:run{ until_t = 0.1, each = function() n = n + 1 end }
+  T.check(n == 0, "without every there are no outputs: each is not called, not even at the start")
 end)
 
 T.case("files and closing", function()
