@@ -1,5 +1,5 @@
 -- The headline case: the squeeze-flow test of a Bingham (or Newtonian) sample.
---   build/sph scripts/squeeze.lua mode=velocity Re=10 Bn=0.5 M=800 dx=0.025 t_end=0.5 out=out/sq
+--   build/sph scripts/squeeze.lua mode=velocity Re=10 Bn=0.5 M=100 dx=0.025 t_end=0.4 out=out/sq
 --   build/sph scripts/squeeze.lua mode=load F=-10 Re=1 Bn=5 t_end=2 out=out/load
 -- Parameters (paper's scaling, H = U = mu = 1): mode (velocity | load), Re, Bn, M, dx,
 -- t_end, F (load on the whole sample per unit depth, in units of mu U: the paper's
@@ -16,12 +16,17 @@
 -- docs/performance.md; eased for large runs).
 -- Writes out/series.csv: t, h, plate velocity, plate force, solver iterations, max
 -- density error, and the lubrication reference (Newtonian: mu V / h^6 or h(t) under load).
+-- Its first row is the start, t = 0, before any step: no force is computed there yet, so
+-- its force cell is empty (and force.png starts at the first step's force).
 -- Exit status: 0 the run reached t_end; 1 an error (bad arguments, a gap under 3 particles
 -- across asked for, an engine error: the message says which); 2 it reached h_stop before
 -- t_end ("stopped at t = ..., h = ... <= h_stop"); 130 / 143 interrupted.
--- frames=N (default 0): N yield-state frames evenly over the run into out/frames/f_0001.png
--- ..., the animation out/squeeze.png (fps, default 10; frame_width, default 800) and the
--- plots out/h.png and out/force.png (plots=1 gives the plots without frames).
+-- By default it also writes 40 yield-state frames evenly over the run into
+-- out/frames/f_0001.png ... (yielded light, unyielded dark, with their legend), the
+-- animation out/squeeze.png (fps, default 10; frame_width, default 800) and the plots
+-- out/h.png and out/force.png: frames=N for N frames, frames=0 plots=0 for the series alone.
+-- vtu=N (default 0): N ParaView files out/vtu/p_0001.vtu ... evenly over the run (the
+-- whole sample: the mirrored half included) and out/squeeze.pvd, their time series.
 -- SIGINT / SIGTERM (Ctrl-C, kill) end the run after the current step: the series, the
 -- frames so far, the plots and the animation are written, the state goes to
 -- out/state.bin, and the script says how to continue (the same arguments and
@@ -47,10 +52,11 @@ local SPEC = {
   { "h_min", "number", nil, "thinnest gap the plates are sized for (min(0.25, 0.8 height))" },
   { "h_stop", "number", nil, "end the run when the gap is thinner (h_min)" },
   { "out", "string", "out/squeeze", "output folder" },
-  { "frames", "integer", 0, "yield-state frames over the run (and the animation)" },
+  { "frames", "integer", 40, "yield-state frames over the run and the animation squeeze.png (0: none)" },
   { "fps", "number", 10, "the animation's frames per second" },
   { "frame_width", "integer", 800, "frame width in pixels" },
-  { "plots", "flag", nil, "1: h.png and force.png (default: with frames)" },
+  { "plots", "flag", 1, "h.png and force.png (0: none)" },
+  { "vtu", "integer", 0, "ParaView files vtu/p_*.vtu over the run and squeeze.pvd (0: none)" },
   { "restart", "string", nil, "a saved state to continue (out/state.bin)" },
   { "threads", "integer", nil, "threads (all cores)" },
   { "viscosity", { "implicit", "explicit" }, nil, "the viscous step" },
@@ -149,23 +155,48 @@ if nframes > 0 then
   local view = { b[1], b[2] - pad, b[3], t[4] + pad }
   local fw = math.floor(o.frame_width or 800)
   local fh = math.max(120, math.floor(fw * (view[4] - view[2]) / (view[3] - view[1])) + 40)
-  frame_opts = { width = fw, height = fh, view = view, color = "yield",
+  -- the legend (yielded / unyielded) on the right, the time and the case above
+  frame_opts = { width = fw, height = fh, view = view, color = "yield", colorbar = true,
                  label = string.format("Re=%g Bn=%g", Re, Bn) }
 end
+-- the k-th of n outputs spread evenly over [0, t_end] (k from 0) is due at time t
+local function due(n, k, t)
+  local tk = n > 1 and t_end * k / (n - 1) or 0
+  return t >= tk - 1e-9 * t_end
+end
+local frame_t = -math.huge -- the time of the last frame
 local function frame(w)
-  if nframes == 0 or #frames >= nframes then return end
-  local tk = nframes > 1 and t_end * #frames / (nframes - 1) or 0
-  if w.t < tk - 1e-9 * t_end then return end
+  if nframes == 0 or #frames >= nframes or not due(nframes, #frames, w.t) then return end
   frame_opts.file = string.format("%s/frames/f_%04d.png", out, #frames + 1)
   assert(w:render(frame_opts))
-  frames[#frames + 1] = frame_opts.file
+  frames[#frames + 1], frame_t = frame_opts.file, w.t
+end
+-- vtu=N: N ParaView files spread like the frames, and the time series squeeze.pvd listing
+-- them, written again after each file (an interrupted run leaves a series ParaView opens)
+local nvtu = math.floor(o.vtu or 0)
+local vtus = {} -- { t = , file = } with file relative to out (where the .pvd is)
+if nvtu > 0 then assert(sph.mkdir(out .. "/vtu")) end
+local function vtu(w, last)
+  if nvtu == 0 or #vtus >= nvtu or not (last or due(nvtu, #vtus, w.t)) then return end
+  local name = string.format("vtu/p_%04d.vtu", #vtus + 1)
+  assert(w:write_vtu(out .. "/" .. name))
+  vtus[#vtus + 1] = { t = w.t, file = name }
+  assert(sph.pvd_write(out .. "/squeeze.pvd", vtus))
+end
+if restart and nvtu > 0 then -- the files listed before the interrupt, none past the state
+  local f = io.open(out .. "/squeeze.pvd")
+  local text = f and f:read("a") or ""
+  if f then f:close() end
+  for t, file in text:gmatch('timestep="([^"]+)"[^>]-file="([^"]+)"') do
+    if tonumber(t) <= w.t * (1 + 1e-12) and #vtus < nvtu then vtus[#vtus + 1] = { t = tonumber(t), file = file } end
+  end
 end
 local ts, hs, fs, refs = {}, {}, {}, {}
 local stopped_h -- the gap at which record stopped the run (h < h_stop)
 for _, line in ipairs(old_rows) do
-  local t, h, _, f = line:match("^([^,]+),([^,]+),([^,]+),([^,]+),")
+  local t, h, _, f = line:match("^([^,]+),([^,]+),([^,]*),([^,]*),")
   t, h = tonumber(t), tonumber(h)
-  ts[#ts + 1], hs[#hs + 1], fs[#fs + 1], refs[#refs + 1] = t, h, tonumber(f), ref(h, t)
+  ts[#ts + 1], hs[#hs + 1], fs[#fs + 1], refs[#refs + 1] = t, h, tonumber(f) or 0 / 0, ref(h, t)
 end
 -- and the frames made before the interrupt (f_0001.png ... in order, none past the state)
 if restart and nframes > 0 then
@@ -178,7 +209,7 @@ if restart and nframes > 0 then
       break
     end
     f:close()
-    frames[#frames + 1] = file
+    frames[#frames + 1], frame_t = file, tk
   end
 end
 -- a film a few particles thick is where the defaults fail (README, Thin films): say so once
@@ -193,11 +224,16 @@ local function record(w)
     print(string.format("note: t=%.4g, the gap h=%.4f is %.1f particles across; the defaults fail in thin films "
       .. "(README, Thin films): %s", w.t, h, h / dx, thin_options))
   end
-  series:write(string.format("%.8g,%.8g,%.8g,%.8g,%d,%.4e,%s\n", w.t, h, top:velocity(), top.force,
-    s.solver_iterations, s.max_density_error, ref(h, w.t) == ref(h, w.t) and string.format("%.8g", ref(h, w.t)) or ""))
+  -- before the first step (the t = 0 row) the plate has no force computed yet: the cell
+  -- is empty and the force plot leaves it out
+  local force = w.steps > 0 and top.force or nil
+  series:write(string.format("%.8g,%.8g,%.8g,%s,%d,%.4e,%s\n", w.t, h, top:velocity(),
+    force and string.format("%.8g", force) or "", s.solver_iterations, s.max_density_error,
+    ref(h, w.t) == ref(h, w.t) and string.format("%.8g", ref(h, w.t)) or ""))
   series:flush()
-  ts[#ts + 1], hs[#hs + 1], fs[#fs + 1], refs[#refs + 1] = w.t, h, top.force, ref(h, w.t)
+  ts[#ts + 1], hs[#hs + 1], fs[#fs + 1], refs[#refs + 1] = w.t, h, force or 0 / 0, ref(h, w.t)
   frame(w)
+  vtu(w)
   if h < h_stop then
     stopped_h = h
     return false
@@ -209,21 +245,23 @@ print(string.format("squeeze: mode=%s Re=%g Bn=%g M=%g dx=%g: %d fluid particles
 if restart then
   -- the outputs on the first run's grid (t0 = 0): the steps are that run's, bit for bit
   print(string.format("restart: %s at t=%.6g, step %d", restart, w.t, w.steps))
-else
-  record(w)
 end
--- an engine error (a particle through a plate, a NaN, a collapsed time step) ends the run
--- with its message; what was computed up to then is still written (series, frames, plots)
+-- w:run calls record at t = 0 too (the series' first row) but not at the start of a
+-- restart (t0 = 0 lies before it). An engine error (a particle through a plate, a NaN, a
+-- collapsed time step) ends the run with its message; what was computed up to then is
+-- still written (series, frames, plots)
 local ok, run_err = pcall(w.run, w, { until_t = t_end, every = every, each = record, t0 = 0 })
 series:close()
 local sig, signame = sph.interrupted()
 if not ok then io.stderr:write("squeeze: the run stopped early: " .. tostring(run_err) .. "\n") end
-if nframes > 0 and #frames < nframes and not sig then -- the run ended early or between outputs: show its end
+-- the run ended early, or had fewer outputs than frames: show its end (once)
+if nframes > 0 and #frames < nframes and not sig and w.t > frame_t + 1e-9 * t_end then
   nframes = #frames + 1
   frame_opts.file = string.format("%s/frames/f_%04d.png", out, #frames + 1)
   assert(w:render(frame_opts))
   frames[#frames + 1] = frame_opts.file
 end
+if nvtu > 0 and #vtus < nvtu and not sig and (#vtus == 0 or vtus[#vtus].t < w.t) then vtu(w, true) end
 local s = w:stats()
 print(string.format((sig and "interrupted" or (ok and not stopped_h) and "done" or "stopped") .. ": t=%.4g h=%.4f force=%.5g  %d steps in %.1f s (%.0f steps/s, %.2f us per particle-step)  "
   .. "mean pressure iterations %.1f  max density error %.2e",
@@ -240,7 +278,10 @@ if #frames > 0 then
   assert(sph.animate{ frames = frames, file = out .. "/squeeze.png", fps = o.fps or 10 })
   print(string.format("wrote %d frames %s/frames/f_*.png and %s/squeeze.png", #frames, out, out))
 end
-if (o.plots or (nframes > 0 and 1 or 0)) ~= 0 then
+if #vtus > 0 then
+  print(string.format("wrote %d ParaView files %s/vtu/p_*.vtu and their series %s/squeeze.pvd", #vtus, out, out))
+end
+if o.plots ~= 0 then
   -- the lubrication reference where it is finite: a force at constant velocity, a gap under load
   local rt, rv = {}, {}
   for i = 1, #ts do
@@ -248,7 +289,11 @@ if (o.plots or (nframes > 0 and 1 or 0)) ~= 0 then
   end
   local title = string.format("%s: Re=%g Bn=%g M=%g dx=%g", mode, Re, Bn, M, dx)
   local hser = { { x = ts, y = hs, label = "SPH" } }
-  local fser = { { x = ts, y = fs, label = "SPH" } }
+  local ft, fv = {}, {} -- the computed forces only (none at t = 0, before the first step)
+  for i = 1, #ts do
+    if fs[i] == fs[i] then ft[#ft + 1], fv[#fv + 1] = ts[i], fs[i] end
+  end
+  local fser = { { x = ft, y = fv, label = "SPH" } }
   if #rt > 0 then
     table.insert(mode == "load" and hser or fser, { x = rt, y = rv, label = "lubrication" })
   end
