@@ -71,10 +71,10 @@ local function row(w)
     load, top:velocity()))
 end
 
-row(w)
 if o.steps > 0 then                      -- a quick look: N steps, a row each
+  row(w)
   for _ = 1, o.steps do w:step(); row(w) end
-else                                     -- the run: a row every `every`
+else                                     -- the run: a row at the start and every `every` (w:run calls row then too)
   w:run{ until_t = o.t_end, every = o.every, each = row }
 end
 csv:close()

@@ -67,10 +67,10 @@ local function row(w)
   print(string.format("t = %.3f  h = %.4f  F = %8.3f", w.t, top.position, top.force))
 end
 
-row(w)
 if o.steps > 0 then                      -- a quick look: N steps, a row each
+  row(w)
   for _ = 1, o.steps do w:step(); row(w) end
-else                                     -- the run: a row every `every`, landing on those times
+else                                     -- the run: a row at the start and every `every` (w:run calls row then too), landing on those times
   w:run{ until_t = o.t_end, every = o.every, each = row }
 end
 csv:close()
