@@ -8,6 +8,7 @@
 --   workers  runs at a time here (default: the cores); 0 writes the job files only
 --   out      the sweep's folder (default out/sweep): run_0001/ ... (each run's out=),
 --            jobs.txt (one shell command a run), slurm.sh, summary.csv, summary.png
+-- Runs of the squeeze script get frames=0 plots=0 unless given (one summary plot instead).
 -- Runs go through GNU parallel when it is installed, else `xargs -P`. Each run's folder gets
 -- log.txt (what it printed) and status (its exit status). summary.csv: one row a run, the
 -- axes' values, the status, and the last row of the run's series.csv (t, h, velocity,
@@ -53,6 +54,12 @@ for _, k in ipairs(names) do
     axes[#axes + 1] = { name = k, values = vals }
   else
     fixed[#fixed + 1] = { k, tostring(v) }
+  end
+end
+-- the squeeze script makes frames and plots by default: a sweep's runs do not, unless asked
+if script:match("squeeze%.lua$") then
+  for _, k in ipairs{ "frames", "plots" } do
+    if o[k] == nil then fixed[#fixed + 1] = { k, "0" } end
   end
 end
 if #axes == 0 then
