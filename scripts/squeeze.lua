@@ -39,16 +39,21 @@ local params = require "sph.params"
 -- every parameter: name, kind, default (nil: the engine's or a derived one), meaning
 local SPEC = {
   { "mode", { "velocity", "load" }, "velocity", "constant plate velocity or constant load" },
-  { "Re", "number", 10, "Reynolds number (rho)" },
-  { "Bn", "number", 0.5, "Bingham number (tau0); 0: Newtonian" },
-  { "M", "number", 800, "Papanastasiou exponent (m)" },
-  { "dx", "number", 1 / 40, "particle spacing" },
+  { "units", { "dimensionless", "SI" }, "dimensionless", "SI: the lengths, times, V, F and the material in SI (or any consistent units)" },
+  { "Re", "number", nil, "Reynolds number (rho; 10)" },
+  { "Bn", "number", nil, "Bingham number (tau0; 0.5); 0: Newtonian" },
+  { "M", "number", nil, "Papanastasiou exponent (m; 800)" },
+  { "rho", "number", nil, "units=SI: density" },
+  { "mu", "number", nil, "units=SI: plastic (or Newtonian) viscosity" },
+  { "tau0", "number", nil, "units=SI: yield stress (0)" },
+  { "m", "number", nil, "units=SI: Papanastasiou regularisation time (with tau0 > 0)" },
+  { "dx", "number", nil, "particle spacing (1/40 of the height)" },
   { "t_end", "number", 0.5, "end time" },
-  { "every", "number", 0.005, "output interval" },
-  { "F", "number", -10, "load on the whole sample (mode=load; negative compresses)" },
-  { "V", "number", 1, "plate speed (mode=velocity)" },
-  { "width", "number", 0.5, "the half sample's width" },
-  { "height", "number", 1, "the sample's height" },
+  { "every", "number", nil, "output interval (0.005 in the engine's units)" },
+  { "F", "number", nil, "load on the whole sample per unit depth (mode=load; negative compresses; -10)" },
+  { "V", "number", nil, "plate speed (mode=velocity; 1)" },
+  { "width", "number", nil, "the half sample's width (half the height)" },
+  { "height", "number", nil, "the sample's height (1)" },
   { "h_min", "number", nil, "thinnest gap the plates are sized for (min(0.25, 0.8 height))" },
   { "h_stop", "number", nil, "end the run when the gap is thinner (h_min)" },
   { "out", "string", "out/squeeze", "output folder" },
@@ -77,6 +82,46 @@ if not ok then
 end
 
 local mode = o.mode
+local function fail(msg)
+  io.stderr:write("squeeze: ", msg, "\n")
+  os.exit(1)
+end
+-- units=SI: the case in physical units, run in the engine's scaling (sph.units: lengths in
+-- the height H, velocities in the plate speed U, or under a load the load's viscous speed),
+-- the outputs turned back; S holds the scales (1 when dimensionless)
+local S = { T = 1, H = 1, U = 1, F = 1 }
+if o.units == "SI" then
+  for _, k in ipairs{ "Re", "Bn", "M" } do
+    if o[k] ~= nil then fail(k .. " is not a parameter with units=SI: give rho, mu, tau0 and m (the groups follow)") end
+  end
+  for _, k in ipairs{ "height", "rho", "mu", "dx" } do
+    if o[k] == nil then fail("units=SI needs " .. k) end
+  end
+  local units = require "sph.units"
+  local okU, sc = pcall(units.scales, { H = o.height, rho = o.rho, mu = o.mu, tau0 = o.tau0, m = o.m,
+    U = mode == "velocity" and (o.V or fail("units=SI, mode=velocity needs V (the plate speed)")) or nil,
+    F = mode == "load" and (o.F or fail("units=SI, mode=load needs F (the load per unit depth)")) or nil })
+  if not okU then fail(tostring(sc):gsub("^units: ", "")) end
+  S = { T = sc.T, H = sc.H, U = sc.U, F = sc.Fs }
+  o.Re, o.Bn, o.M = sc.Re, sc.Bn, sc.M or 800
+  o.dx = o.dx / sc.H
+  o.t_end = o.t_end / sc.T
+  o.every = o.every and o.every / sc.T
+  o.width = o.width and o.width / sc.H
+  o.height = 1
+  o.h_min = o.h_min and o.h_min / sc.H
+  o.h_stop = o.h_stop and o.h_stop / sc.H
+  if mode == "velocity" then o.V = 1 else o.F = o.F / sc.Fs end
+  print(string.format("squeeze: units=SI: Re=%.6g Bn=%.6g M=%.6g; scales: length %g, time %g, velocity %g, force %g (per unit depth)",
+    o.Re, o.Bn, o.M, S.H, S.T, S.U, S.F))
+else
+  for _, k in ipairs{ "rho", "mu", "tau0", "m" } do
+    if o[k] ~= nil then fail(k .. " is a parameter of units=SI; dimensionless cases take Re, Bn and M") end
+  end
+end
+o.Re, o.Bn, o.M = o.Re or 10, o.Bn or 0.5, o.M or 800
+o.dx, o.F, o.V = o.dx or 1 / 40, o.F or -10, o.V or 1
+o.every = o.every or 0.005
 local Re, Bn, M, dx = o.Re, o.Bn, o.M, o.dx
 local t_end, every = o.t_end, o.every
 local out = o.out
@@ -85,7 +130,8 @@ local world_opts = { threads = o.threads, viscosity = o.viscosity, shifting = o.
                      density_correction = o.density_correction, pressure_gradient = o.pressure_gradient, wall = o.wall,
                      projection_passes = o.projection_passes, density_descent = o.density_descent,
                      tol = o.tol, visc_tol = o.visc_tol, dt_growth = o.dt_growth }
-local width, height = o.width or 0.5, o.height or 1
+local height = o.height or 1
+local width = o.width or 0.5 * height
 -- the plates are sized for the sample spread to the gap h_min; the run ends at h_stop, by
 -- default h_min (thinner, the sample would flow off the plates' ends)
 local h_min = o.h_min or math.min(0.25, 0.8 * height)
@@ -130,13 +176,14 @@ if restart then
     f:read("l")
     for line in f:lines() do
       local t = tonumber(line:match("^([^,]+),"))
-      if t and t <= w.t * (1 + 1e-12) then old_rows[#old_rows + 1] = line end
+      if t and t <= w.t * S.T * (1 + 1e-12) then old_rows[#old_rows + 1] = line end
     end
     f:close()
   end
 end
 local series = assert(io.open(out .. "/series.csv", "w"))
-series:write("t,h,velocity,force,solver_iterations,max_density_error,reference\n")
+series:write(o.units == "SI" and "t [s],h [m],velocity [m/s],force [N/m],solver_iterations,max_density_error,reference\n"
+  or "t,h,velocity,force,solver_iterations,max_density_error,reference\n")
 for _, line in ipairs(old_rows) do series:write(line, "\n") end
 local function ref(h, t)
   if Bn > 0 then return 0 / 0 end
@@ -196,7 +243,8 @@ local stopped_h -- the gap at which record stopped the run (h < h_stop)
 for _, line in ipairs(old_rows) do
   local t, h, _, f = line:match("^([^,]+),([^,]+),([^,]*),([^,]*),")
   t, h = tonumber(t), tonumber(h)
-  ts[#ts + 1], hs[#hs + 1], fs[#fs + 1], refs[#refs + 1] = t, h, tonumber(f) or 0 / 0, ref(h, t)
+  local r = ref(h / S.H, t / S.T) * (mode == "velocity" and S.F or S.H)
+  ts[#ts + 1], hs[#hs + 1], fs[#fs + 1], refs[#refs + 1] = t, h, tonumber(f) or 0 / 0, r
 end
 -- and the frames made before the interrupt (f_0001.png ... in order, none past the state)
 if restart and nframes > 0 then
@@ -227,11 +275,13 @@ local function record(w)
   -- before the first step (the t = 0 row) the plate has no force computed yet: the cell
   -- is empty and the force plot leaves it out
   local force = w.steps > 0 and top.force or nil
-  series:write(string.format("%.8g,%.8g,%.8g,%s,%d,%.4e,%s\n", w.t, h, top:velocity(),
-    force and string.format("%.8g", force) or "", s.solver_iterations, s.max_density_error,
-    ref(h, w.t) == ref(h, w.t) and string.format("%.8g", ref(h, w.t)) or ""))
+  -- the reference is a force at constant velocity, a gap under a load
+  local r = ref(h, w.t) * (mode == "velocity" and S.F or S.H)
+  series:write(string.format("%.8g,%.8g,%.8g,%s,%d,%.4e,%s\n", w.t * S.T, h * S.H, top:velocity() * S.U,
+    force and string.format("%.8g", force * S.F) or "", s.solver_iterations, s.max_density_error,
+    r == r and string.format("%.8g", r) or ""))
   series:flush()
-  ts[#ts + 1], hs[#hs + 1], fs[#fs + 1], refs[#refs + 1] = w.t, h, force or 0 / 0, ref(h, w.t)
+  ts[#ts + 1], hs[#hs + 1], fs[#fs + 1], refs[#refs + 1] = w.t * S.T, h * S.H, force and force * S.F or 0 / 0, r
   frame(w)
   vtu(w)
   if h < h_stop then
@@ -265,7 +315,7 @@ if nvtu > 0 and #vtus < nvtu and not sig and (#vtus == 0 or vtus[#vtus].t < w.t)
 local s = w:stats()
 print(string.format((sig and "interrupted" or (ok and not stopped_h) and "done" or "stopped") .. ": t=%.4g h=%.4f force=%.5g  %d steps in %.1f s (%.0f steps/s, %.2f us per particle-step)  "
   .. "mean pressure iterations %.1f  max density error %.2e",
-  w.t, top.position, top.force, w.steps, s.wall_time, w.steps / s.wall_time,
+  w.t * S.T, top.position * S.H, top.force * S.F, w.steps, s.wall_time, w.steps / s.wall_time,
   1e6 * s.wall_time / (w.steps * s.particles), s.solver_iterations_total / w.steps, s.max_density_error))
 print("wrote " .. out .. "/series.csv")
 if s.peak_density_error > 0.01 then
@@ -297,8 +347,11 @@ if o.plots ~= 0 then
   if #rt > 0 then
     table.insert(mode == "load" and hser or fser, { x = rt, y = rv, label = "lubrication" })
   end
-  assert(sph.plot{ file = out .. "/h.png", xlabel = "t", ylabel = "h", title = title, series = hser })
-  assert(sph.plot{ file = out .. "/force.png", xlabel = "t", ylabel = "plate force", title = title, series = fser })
+  local si = o.units == "SI"
+  assert(sph.plot{ file = out .. "/h.png", xlabel = si and "t [s]" or "t", ylabel = si and "h [m]" or "h", title = title,
+    series = hser })
+  assert(sph.plot{ file = out .. "/force.png", xlabel = si and "t [s]" or "t",
+    ylabel = si and "plate force [N/m]" or "plate force", title = title, series = fser })
   print("wrote " .. out .. "/h.png and " .. out .. "/force.png")
 end
 if sig then

@@ -149,7 +149,7 @@ T.case("headline squeeze script, bad parameters are refused by name", function()
   local text, code = run("viscocity=explicit t_end=0.001 dx=0.05")
   T.check(code == 1 and text:find("unknown parameter 'viscocity' (did you mean viscosity?)", 1, true) ~= nil,
           "a misspelt parameter exits 1 and suggests the right name", text)
-  T.check(text:find("the parameters are: mode, Re, Bn", 1, true) ~= nil, "the message lists the parameters", text)
+  T.check(text:find("the parameters are: mode, units, Re, Bn", 1, true) ~= nil, "the message lists the parameters", text)
   text, code = run("Bn=abc t_end=0.001 dx=0.05")
   T.check(code == 1 and text:find('Bn must be a number, got "abc"', 1, true) ~= nil, "Bn=abc exits 1 naming Bn", text)
   text, code = run("mode=lod t_end=0.001 dx=0.05")
@@ -192,6 +192,65 @@ T.case("headline squeeze script under lua5.4", function()
   p:close()
   T.check(tonumber(text:match("exit=(%d+)")) == 1 and text:find("Bn must be a number", 1, true) ~= nil,
           "lua5.4 refuses Bn=abc by name", text)
+end)
+
+
+-- units=SI: a case in physical units equals its dimensionless twin: H = 0.01 m, U = 0.01 m/s,
+-- rho = 1000, mu = 0.1 Pa s, tau0 = 0.2 Pa, m = 100 s give Re = 1, Bn = 2, M = 100, and the
+-- series in s, m, m/s and N/m are the twin's times the scales (1 s, 0.01 m, 0.01 m/s,
+-- 1e-3 N/m). Under a load the speed scale is the load's viscous speed |F| / mu: F = -0.01 N/m
+-- gives U = 0.1 m/s, Re = 10, Bn = 0.2, M = 1000 and the twin's load -1.
+local function series(file)
+  local rows = {}
+  local f = io.open(file)
+  if not f then return rows end
+  f:read("l")
+  for line in f:lines() do
+    local r = {}
+    for v in (line .. ","):gmatch("([^,]*),") do r[#r + 1] = tonumber(v) end
+    rows[#rows + 1] = r
+  end
+  f:close()
+  return rows
+end
+local function twins(si_args, dl_args, sc, name)
+  local sdir, ddir = dir .. "/si_" .. name, dir .. "/dl_" .. name
+  local cmd = "%s %s/scripts/squeeze.lua %s frames=0 plots=0 threads=1 out=%s 2>&1; echo \"exit=$?\""
+  local p = assert(io.popen(string.format(cmd, sph_bin, top, si_args, sdir)))
+  local t1 = p:read("a")
+  p:close()
+  p = assert(io.popen(string.format(cmd, sph_bin, top, dl_args, ddir)))
+  local t2 = p:read("a")
+  p:close()
+  T.check(t1:find("exit=0", 1, true) and t2:find("exit=0", 1, true), name .. ": both runs exit 0", t1 .. t2)
+  local a, b = series(sdir .. "/series.csv"), series(ddir .. "/series.csv")
+  T.check(#a == #b and #a > 5, name .. ": the same number of rows", #a .. " vs " .. #b)
+  local worst = 0
+  for i = 1, math.min(#a, #b) do
+    for c, k in ipairs{ sc.T, sc.H, sc.U, sc.F } do
+      if a[i][c] and b[i][c] then
+        local d = math.abs(a[i][c] / k - b[i][c]) / math.max(1e-12, math.abs(b[i][c]))
+        if d > worst then worst = d end
+      end
+    end
+  end
+  print(string.format("# %s: largest relative difference of the rescaled series %.2e", name, worst))
+  T.below(worst, 1e-6, name .. ": the SI series is the dimensionless one times the scales")
+  return t1
+end
+
+T.case("headline squeeze script, units=SI equals its dimensionless twin", function()
+  local text = twins("units=SI height=0.01 V=0.01 rho=1000 mu=0.1 tau0=0.2 m=100 dx=0.0005 t_end=0.03 every=0.005",
+    "Re=1 Bn=2 M=100 dx=0.05 t_end=0.03 every=0.005", { T = 1, H = 0.01, U = 0.01, F = 1e-3 }, "velocity")
+  T.check(text:find("Re=1 Bn=2 M=100", 1, true) ~= nil, "it prints Re, Bn and M", text)
+  twins("units=SI mode=load F=-0.01 height=0.01 rho=1000 mu=0.1 tau0=0.2 m=100 dx=0.0005 t_end=0.003 every=0.0005",
+    "mode=load F=-1 Re=10 Bn=0.2 M=1000 dx=0.05 t_end=0.03 every=0.005", { T = 0.1, H = 0.01, U = 0.1, F = 0.01 }, "load")
+  local t, code = run("units=SI height=0.01 V=0.01 rho=1000 mu=0.1 Re=2 dx=0.0005 t_end=0.001")
+  T.check(code == 1 and t:find("Re is not a parameter with units=SI", 1, true) ~= nil, "Re with units=SI is refused", t)
+  t, code = run("mu=0.1 dx=0.05 t_end=0.001")
+  T.check(code == 1 and t:find("mu is a parameter of units=SI", 1, true) ~= nil, "mu without units=SI is refused", t)
+  t, code = run("units=SI height=0.01 V=0.01 rho=1000 t_end=0.001 dx=0.0005")
+  T.check(code == 1 and t:find("units=SI needs mu", 1, true) ~= nil, "a missing material parameter is named", t)
 end)
 
 T.done()
