@@ -264,11 +264,36 @@ end
 local thin_noted = o.pressure_gradient == "difference"
 local thin_options = mode == "velocity" and "pressure_gradient=difference"
                      or "density_correction=gmres pressure_gradient=difference"
+-- a progress line on a terminal (stderr): the time, the gap and the time left, rewritten
+-- at each output and cleared before anything else is printed
+local progress_on = os.execute("test -t 2") == true and os.getenv("TERM") ~= "dumb"
+local progress_shown = false
+local function clear_progress()
+  if progress_shown then
+    io.stderr:write("\r\27[K")
+    progress_shown = false
+  end
+end
+local function progress(w)
+  if not progress_on or w.t <= 0 then return end
+  local el, f = w:stats().wall_time, math.min(1, w.t / t_end)
+  local left = f > 0 and el * (1 - f) / f or 0
+  local function hms(x)
+    x = math.floor(x + 0.5)
+    return x >= 3600 and string.format("%dh%02dm", x // 3600, x % 3600 // 60)
+      or x >= 60 and string.format("%dm%02ds", x // 60, x % 60) or string.format("%ds", x)
+  end
+  io.stderr:write(string.format("\r\27[Kt=%.4g of %.4g (%.0f %%)  h=%.4f  %d steps  %s left", w.t * S.T, t_end * S.T,
+    100 * f, top.position * S.H, w.steps, hms(left)))
+  io.stderr:flush()
+  progress_shown = true
+end
 local function record(w)
   local s = w:stats()
   local h = top.position
   if not thin_noted and h < 12 * dx then
     thin_noted = true
+    clear_progress()
     print(string.format("note: t=%.4g, the gap h=%.4f is %.1f particles across; the defaults fail in thin films "
       .. "(README, Thin films): %s", w.t, h, h / dx, thin_options))
   end
@@ -300,7 +325,12 @@ end
 -- restart (t0 = 0 lies before it). An engine error (a particle through a plate, a NaN, a
 -- collapsed time step) ends the run with its message; what was computed up to then is
 -- still written (series, frames, plots)
-local ok, run_err = pcall(w.run, w, { until_t = t_end, every = every, each = record, t0 = 0 })
+local ok, run_err = pcall(w.run, w, { until_t = t_end, every = every, t0 = 0, each = function(w)
+  local r = record(w)
+  progress(w)
+  return r
+end })
+clear_progress()
 series:close()
 local sig, signame = sph.interrupted()
 if not ok then io.stderr:write("squeeze: the run stopped early: " .. tostring(run_err) .. "\n") end
