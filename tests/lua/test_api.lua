@@ -635,4 +635,28 @@ T.case("sph.params: case parameters checked by name and type", function()
   T.checkerror("name=value expected", "a bare word", params.parse, "case", SPEC, "n")
 end)
 
+
+T.case("sph.units: the groups and scales of a case in physical units", function()
+  local units = require "sph.units"
+  local s = units.scales{ H = 0.01, U = 0.01, rho = 1000, mu = 0.1, tau0 = 0.2, m = 100 }
+  T.close(s.Re, 1, 1e-12, "Re = rho U H / mu")
+  T.close(s.Bn, 2, 1e-12, "Bn = tau0 H / (mu U)")
+  T.close(s.M, 100, 1e-12, "M = m U / H")
+  T.close(s.force(1), 1e-3, 1e-15, "force scale mu U per unit depth")
+  T.close(s.to_time(s.time(0.3)), 0.3, 1e-15, "time there and back")
+  -- Herschel-Bulkley: mu_ref = K (U/H)^(n-1)
+  local hb = units.scales{ H = 0.02, U = 0.04, rho = 1, K = 3, n = 0.5, tau0 = 6, m = 1 }
+  T.close(hb.mu_ref, 3 * 2 ^ -0.5, 1e-12, "Herschel-Bulkley reference viscosity K (U/H)^(n-1)")
+  T.close(hb.Bn, 6 * 0.02 / (hb.mu_ref * 0.04), 1e-12, "and its Bn")
+  -- under a load: U is the load's viscous speed, so the engine's load is -1
+  local ld = units.scales{ H = 0.01, F = -0.01, rho = 1000, mu = 0.1 }
+  T.close(ld.U, 0.1, 1e-15, "load scaling: U = |F| / mu")
+  T.close(ld.to_force(-0.01), -1, 1e-12, "the load is -1 in the engine's units")
+  local lh = units.scales{ H = 0.02, F = 5, rho = 1, K = 3, n = 0.5 }
+  T.close(lh.mu_ref * lh.U, 5, 1e-12, "Herschel-Bulkley under a load: K (U/H)^(n-1) U = |F|")
+  T.checkerror("give the plate speed U or the load F", "neither U nor F", units.scales, { H = 1, rho = 1, mu = 1 })
+  T.checkerror("mu must be a positive number", "mu = 0", units.scales, { H = 1, U = 1, rho = 1, mu = 0 })
+  T.checkerror("not both", "mu and K", units.scales, { H = 1, U = 1, rho = 1, mu = 1, K = 1, n = 1 })
+end)
+
 T.done()
