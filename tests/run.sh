@@ -10,18 +10,21 @@ B=${1:-build}
 export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
 top=$(cd "$(dirname "$0")/.." && pwd)
 pass=0; fail=0
+start_all=$(date +%s)
 run() {
     name=$1; shift
     out=$(mktemp)
+    t0=$(date +%s)
     "$@" >"$out" 2>&1
     rc=$?
+    secs=$(( $(date +%s) - t0 ))
     p=$(grep -c '^ok - ' "$out"); f=$(grep -c '^not ok - ' "$out")
     if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
         f=1; echo "not ok - $name: exited with status $rc" >>"$out"
     fi
     grep -E '^(not ok - )' "$out"
     if [ "$f" -ne 0 ] || [ "$rc" -ne 0 ]; then tail -n 20 "$out" | grep -v '^ok - '; fi
-    printf '%-40s %4d passed, %d failed\n' "$name" "$p" "$f"
+    printf '%-40s %4d passed, %d failed  %4d s\n' "$name" "$p" "$f" "$secs"
     pass=$((pass + p)); fail=$((fail + f))
     rm -f "$out"
 }
@@ -37,5 +40,6 @@ for t in "$top"/tests/lua/*.lua; do
     [ -f "$t" ] || continue
     run "$(basename "$t")" "$top/$B/sph" "$t"
 done
+echo "# $(( $(date +%s) - start_all )) s in all"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
