@@ -89,9 +89,11 @@ $(B)/bench_render: tests/bench/bench_render.c $(B)/libsph.a | $(B)
 stability: all
 	$(B)/sph scripts/stability.lua
 
-# the reference cases of ../shared/REFERENCES.md at three resolutions: docs/validation.md
+# the reference cases of ../shared/REFERENCES.md sections 1-4 at up to three resolutions:
+# docs/validation.md and docs/validation_*.png (about 13 minutes on one thread, the default;
+# make validate threads=2 for two)
 validate: all
-	$(B)/sph scripts/validate.lua
+	$(B)/sph scripts/validate.lua $(if $(threads),threads=$(threads))
 
 # The headers a C user needs: sph.h (the engine, C library only) and sph_pictures.h (render,
 # plot, animate; plain data in, PNG out: link with cairo). pictures_cairo.h is internal.
