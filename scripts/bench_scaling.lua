@@ -13,9 +13,7 @@
 -- Run by scripts/bench.sh (`make bench`); by hand:
 --   build/sph scripts/bench_scaling.lua [max_n=120000] [runs=3] [steps=60] [warmup=20]
 --                                       [dt=0.025|adaptive] [until_t=] [threads=1,2] [dx=0.0025]
---                                       [out=out/bench] [density_limit=0.008] [density_solve_tol=1e-3]
---                                       [dt_growth=fixed|eased] [from_t=] [density_wait=0]
---                                       [density_gradient=auto|symmetric|difference]
+--                                       [out=out/bench] [from_t=]
 -- until_t: the timed steps run until the time t reaches it instead of `steps` of them (the
 -- same span of the flow for every dt rule: docs/performance.md, t = 0.009 at dx = 1/450).
 -- from_t: after the adaptive warm-up, untimed steps at the timed rule's dt until t reaches
@@ -23,7 +21,6 @@
 -- at dx/40 are not that: they end at t = 2 dx, 0.0125 at 1/160 but 0.0013 at 1/1400, where
 -- the impulsive start's viscous layer (depth sqrt(nu t), nu = 1) still moves 0.4 dx a step
 -- (docs/performance.md).
--- density_limit is passed to sph.world (0: no passes beyond density_passes).
 -- max_n caps the particle count (fluid + wall) of the ladder (default 1.2e5; the 10^6 row is
 -- opt-in: max_n=1e6, several minutes a run); dx= runs one
 -- resolution only. Runs are interleaved (run 1 of every thread count, then run 2, ...) and
@@ -64,9 +61,7 @@ local median = require("sph.bench").median
 
 local function build(k, nthreads)
   return squeeze.build{ dx = 1 / k, Re = 1, Bn = 5, M = 800, mode = "velocity", V = 1,
-                        world = { threads = nthreads, max_iter = 100000, density_limit = o.density_limit,
-                                  density_solve_tol = o.density_solve_tol, dt_growth = o.dt_growth,
-                                  density_wait = o.density_wait, density_gradient = o.density_gradient } }
+                        world = { threads = nthreads } }
 end
 
 -- particles (fluid + wall) of each rung, from a world that is built and dropped
@@ -176,7 +171,7 @@ print(adaptive and "dt: the engine's adaptive step; dt/dx: the plate's mean trav
   or string.format("dt = %g dx fixed after the warm-up; ns/dx: ns/pt-step over dt/dx (the cost of moving the plate by one dx)", dt_dx))
 if o.from_t then print(string.format("timed from t = %g (untimed steps at the timed dt after the warm-up)", tonumber(o.from_t))) end
 print("p-sol/st: pressure-type solves a step (the pressure, then one per density pass); sw/st: first density passes a step")
-print("that moved along the difference form's direction (density_gradient = auto); rhoerr: the largest max density")
+print("that moved along the difference form's direction; rhoerr: the largest max density")
 print("error after a timed step (over density_tol, 0.5 %, a step takes a second density pass)")
 
 os.execute("mkdir -p '" .. outdir .. "'")

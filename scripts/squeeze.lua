@@ -8,12 +8,10 @@
 -- default min(0.25, 0.8 height)), h_stop (end the run at an output time when the gap is
 -- thinner; default h_min), viscosity, shifting, threads, out (folder); width and
 -- height (the half sample's, default 0.5 and 1: a film started thin is width=1.6
--- height=0.2), and the engine options density_correction, pressure_gradient, wall (the
+-- height=0.2), and the engine options density_correction and pressure_gradient (the
 -- thin-film options: at constant velocity pressure_gradient=difference, under a load
--- density_correction=gmres pressure_gradient=difference; README, Thin films),
--- density_descent and projection_passes (docs/api.md), tol and visc_tol (the pressure
--- and viscous solves' relative residuals; docs/performance.md), dt_growth (fixed | eased:
--- docs/performance.md; eased for large runs).
+-- density_correction=gmres pressure_gradient=difference; README, Thin films), tol and
+-- visc_tol (the pressure and viscous solves' relative residuals; docs/performance.md).
 -- Writes out/series.csv: t, h, plate velocity, plate force, solver iterations, max
 -- density error, and the lubrication reference (Newtonian: mu V / h^6 or h(t) under load).
 -- Its first row is the start, t = 0, before any step: no force is computed there yet, so
@@ -68,12 +66,8 @@ local SPEC = {
   { "shifting", "number", nil, "particle shifting coefficient (20)" },
   { "density_correction", { "passes", "gmres" }, nil, "engine option (docs/api.md)" },
   { "pressure_gradient", { "symmetric", "difference" }, nil, "engine option (docs/api.md)" },
-  { "wall", { "linear", "curved" }, nil, "engine option (docs/api.md)" },
-  { "projection_passes", "integer", nil, "engine option (docs/api.md)" },
-  { "density_descent", "number", nil, "engine option (docs/api.md)" },
   { "tol", "number", nil, "pressure solve's relative residual" },
   { "visc_tol", "number", nil, "viscous solve's relative residual" },
-  { "dt_growth", { "fixed", "eased" }, nil, "engine option (docs/api.md)" },
 }
 local ok, o = pcall(params.parse, "squeeze", SPEC, ...)
 if not ok then
@@ -127,9 +121,8 @@ local t_end, every = o.t_end, o.every
 local out = o.out
 
 local world_opts = { threads = o.threads, viscosity = o.viscosity, shifting = o.shifting,
-                     density_correction = o.density_correction, pressure_gradient = o.pressure_gradient, wall = o.wall,
-                     projection_passes = o.projection_passes, density_descent = o.density_descent,
-                     tol = o.tol, visc_tol = o.visc_tol, dt_growth = o.dt_growth }
+                     density_correction = o.density_correction, pressure_gradient = o.pressure_gradient,
+                     tol = o.tol, visc_tol = o.visc_tol }
 local height = o.height or 1
 local width = o.width or 0.5 * height
 -- the plates are sized for the sample spread to the gap h_min; the run ends at h_stop, by

@@ -5,9 +5,7 @@
 -- flags that match the sample's outline. Prints one table row per case and a last line
 -- `N passed, N failed`.
 --   build/sph scripts/stability.lua [quick=1] [only=name] [threads=N] [dx=0.025]
---                                   [density_passes=N] [shifting=A] [predictor=beta] [kappa=k]
---                                   [dc=passes|gmres] [pg=symmetric|difference] [wall=linear|curved]
---                                   [pp=projection passes]
+--                                   [shifting=A] [dc=passes|gmres] [pg=symmetric|difference]
 -- quick=1 runs each case to a tenth of its end time (the reduced versions of make test).
 local stability = require "sph.stability"
 local o = ... or {}
@@ -19,10 +17,8 @@ print(string.format("%-20s %7s %8s %8s %8s %8s %8s %7s %7s %7s %s", "case", "t_e
 for _, c in ipairs(stability.cases) do
   if not o.only or o.only == c.name then
     local r = stability.run(c, quick and c.t_end / 10 or c.t_end,
-                            { dx = o.dx, threads = o.threads, world = { density_passes = o.density_passes, shifting = o.shifting,
-                                       pressure_predictor = o.predictor, density_diffusion = o.kappa,
-                                       density_correction = o.dc, pressure_gradient = o.pg, wall = o.wall,
-                                       projection_passes = o.pp } })
+                            { dx = o.dx, threads = o.threads, world = { shifting = o.shifting,
+                                       density_correction = o.dc, pressure_gradient = o.pg } })
     ran = ran + 1
     if not r.pass then failures = failures + 1 end
     print(string.format("%-20s %7.3g %8.1f %8d %8.1f %8.1f %8.4f %7.4f %7d %7d %s", c.name, r.t, r.wall, r.steps,

@@ -1,70 +1,49 @@
 /* The density correction (sph_density_correct): after the projection, the continuity
  * density's error is removed by moving the particles, with the pressure system's matrix
- * (pressure.c, whose top comment gives the scheme):
- * density_diffusion's filter, the passes (density_pass), the density descent when they
- * stall, the GMRES fallback, or density_correction = "gmres" on its own. */
+ * (pressure.c, whose top comment gives the scheme): the passes (density_pass), the density
+ * descent when they stall, the GMRES fallback, or density_correction = "gmres" on its own. */
 #include "internal.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* density_diffusion: one explicit step of rho_i += kappa h^2 sum_j 2 V_ij (rho_i - rho_j) F_ij
- * between interior fluid particles (F_ij < 0: the pressure matrix's compact Laplacian;
- * V_ij = (m_i + m_j) / (rho_i + rho_j), symmetric, so between interior particles the
- * exchange is pairwise and the sum of rho is kept). It damps the continuity density's
- * particle-scale modes, which the correction's wide divergence cannot see (the checkerboard
- * a long thin-film squeeze builds in its stagnation zone), and barely touches smooth ones
- * (tests/unit/test_density.c: a lattice checkerboard x 0.62, one sine across the box
- * x 0.990 at kappa = 0.1). h^2 times the largest diagonal is below 3, so kappa <= 0.25
- * keeps the diffusion step itself stable. Not the default: it changes the squeeze forces,
- * mostly through the longer steps the lower error allows. */
-static void diffuse_density(sph_world *w) {
-    double kap = w->par.density_diffusion, rho0 = w->par.rho0, h2 = w->h * w->h, maxerr = 0.0;
-    int n = w->n;
-    double *r = w->sb;
-#pragma omp parallel for schedule(static) num_threads(w->threads)
-    for (int i = 0; i < n; i++) {
-        r[i] = w->rho[i];
-        if (w->kind[i] != SPH_FLUID || w->surf[i]) continue;
-        double lap = 0.0, rhoi = w->rho[i], mi = w->m[i];
-        for (int k = w->nb_start[i]; k < w->nb_mid[i]; k++) {
-            int j = w->nb_j[k];
-            lap += 2.0 * (mi + w->m[j]) / (rhoi + w->rho[j]) * (rhoi - w->rho[j]) * w->nb_f[k];
-        }
-        r[i] = rhoi + kap * h2 * lap;
-    }
-#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(max : maxerr)
-    for (int i = 0; i < n; i++) {
-        if (w->kind[i] != SPH_FLUID || w->surf[i]) continue;
-        w->rho[i] = r[i];
-        double e = fabs(r[i] / rho0 - 1.0);
-        if (e > maxerr) maxerr = e;
-    }
-    w->st.max_density_error = maxerr;
-}
+/* Passes a step while the error exceeds density_tol: a second pass about halves what the
+ * first leaves; more would remove the error that shortens dt, and the loaded plates' time
+ * error would show (sph_density_correct). */
+#define DENSITY_PASSES 2
+/* Above this error (0.8 %) after those passes, more passes follow, then the descent and
+ * the GMRES fallback: it holds the 1 % criterion of the stability suite with a margin. */
+#define DENSITY_LIMIT 0.008
+#define MAX_DENSITY_PASSES 10 /* passes a step in all: each further one removes less */
+#define MAX_GMRES 8 /* GMRES directions a correction at most: each is a solve and 3 vectors */
+#define DESCENT_MOVES 20 /* steepest-descent moves a step at most: each two sweeps, no solve */
+/* The correction's solves' relative residual: the density follows the displacement
+ * actually made, so a looser phi only removes a little less error per pass, for a third
+ * fewer pressure-type iterations (correction_solve). */
+#define DENSITY_SOLVE_TOL 1e-3
+/* The probe's loose solve (density_pass): at 0.1 a probe of step length 0 is one whose
+ * full pass moves nothing too. */
+#define PROBE_TOL 0.1
 
 /* The density correction (see the top of pressure.c): the pressure system's matrix, the
- * source gamma (rho0 - rho_i) / rho0, warm-started from the last phi; the particles move by
+ * source (rho0 - rho_i) / rho0, warm-started from the last phi; the particles move by
  * -grad phi / rho (the pressure's symmetric gradient) and their density follows by
  * continuity. Walls stay; free-surface particles hold phi = 0. */
 static int density_pass(sph_world *w, int pass, double *alpha);
 
-/* Up to density_passes corrections while the error stays above density_tol. One pass
+/* Up to DENSITY_PASSES corrections while the error stays above density_tol. One pass
  * removes the smooth part of the error, not all of it: the matrix is the compact Laplacian
  * and the displacement's divergence the wide SPH one, so a short-wavelength error (the
  * column-to-column pattern a squeeze leaves next to the plate/free-surface corner) is only
  * partly removed and builds up; a second pass about halves what the first leaves. Each
- * further pass removes less (a mode that the displacement's divergence barely sees). The
- * default stays 2: more passes remove the error that shortens dt, and the loaded plates'
- * time error then shows.
+ * further pass removes less (a mode that the displacement's divergence barely sees).
  * So the extra passes come only where the error would break the 1 % criterion: after
- * density_passes, passes go on (up to SPH_MAX_DENSITY_PASSES) while the error is above
- * density_limit (0.8 %); that holds the stability suite under it and barely moves the
+ * DENSITY_PASSES, passes go on (up to MAX_DENSITY_PASSES) while the error is above
+ * DENSITY_LIMIT (0.8 %); that holds the stability suite under it and barely moves the
  * validation squeezes. */
-/* Steepest descent on the continuity density error (density_descent; see
- * sph_density_correct). With e = rho / rho0 - 1 over interior fluid (0 on the free surface
- * and walls) and d = D r the continuity change of a displacement r (D the renormalised
+/* Steepest descent on the continuity density error (see sph_density_correct). With
+ * e = rho / rho0 - 1 over interior fluid (0 on the free surface and walls) and d = D r the continuity change of a displacement r (D the renormalised
  * wide divergence, sph_field_div), the gradient of 1/2 sum (e_i + d_i)^2 is D^T e, which is,
  * up to the renormalisation matrix taken at the particle itself and its neighbours' masses,
  * the symmetric SPH gradient of e: the move -grad e (particles go from where the density
@@ -74,12 +53,12 @@ static int density_pass(sph_world *w, int pass, double *alpha);
  * length goes to 0 and the error stays. Each move takes the least-squares length along
  * its direction, at most DESCENT_MAX_MOVE dx for the particle moved furthest, and the
  * density follows by continuity (displace); moves go on while the error is above
- * density_limit, up to K, and stop when the move would not lower the error (the
+ * DENSITY_LIMIT, up to K, and stop when the move would not lower the error (the
  * approximate transpose, or nothing left to move).
- * It is what holds the error under density_limit where the passes' step length is 0: the
+ * It is what holds the error under DENSITY_LIMIT where the passes' step length is 0: the
  * rows next to a thin film's free front, off both plates, and the closed cavity's corners
  * (whose error would otherwise hold the time step down). Where the passes
- * reach density_limit (the other stability cases, the headline squeeze) it does not run. */
+ * reach DENSITY_LIMIT (the other stability cases, the headline squeeze) it does not run. */
 #define DESCENT_MAX_MOVE 0.05
 static double displace(sph_world *w, const double *dx, const double *dy, const double *d, double alpha);
 static int density_descent(sph_world *w, int K) {
@@ -118,27 +97,21 @@ static int density_descent(sph_world *w, int K) {
         double alpha = fmin(num / den, DESCENT_MAX_MOVE * w->dx / sqrt(gmax));
         w->st.max_density_error = displace(w, dx, dy, d, alpha);
         done++;
-        if (w->st.max_density_error <= w->par.density_limit) break;
+        if (w->st.max_density_error <= DENSITY_LIMIT) break;
     }
     return done;
 }
 static int density_gmres(sph_world *w);
-/* the density descent when the error is above density_limit (and the descent is on) */
+/* the density descent when the error is above DENSITY_LIMIT */
 static void descend_if_above(sph_world *w) {
-    double lim = w->par.density_limit;
-    if (lim > 0 && w->st.max_density_error > lim && w->par.density_descent > 0 && w->par.density_relax > 0)
-        w->st.density_descents += density_descent(w, w->par.density_descent);
+    if (w->st.max_density_error > DENSITY_LIMIT) w->st.density_descents += density_descent(w, DESCENT_MOVES);
 }
 #define FALLBACK_USELESS 0.95
 #define FALLBACK_WAIT 10
 #define FALLBACK_WAIT_MAX 640
-/* the next wait after a useless try: first, then doubling up to max (the GMRES fallback's
- * and density_wait's) */
-static int next_wait(int wait, int first, int max) { return wait == 0 ? first : wait < max ? 2 * wait : wait; }
 int sph_density_correct(sph_world *w) {
-    if (w->par.density_diffusion > 0) diffuse_density(w);
     /* density_correction = "gmres": its directions, then the descent (below) when they
-     * leave the error above density_limit: its eight directions can leave a step above 1 %
+     * leave the error above DENSITY_LIMIT: its eight directions can leave a step above 1 %
      * (next to the symmetry plane, or at a film's front), and the descent brings it to the
      * limit. */
     if (w->par.density_gmres) {
@@ -146,62 +119,39 @@ int sph_density_correct(sph_world *w) {
         descend_if_above(w);
         return 0;
     }
-    int np = w->par.density_passes;
-    double lim = w->par.density_limit;
     w->st.density_alpha = 1.0;
     w->st.density_passes = 0;
     /* Passes after the first whose step length is 0 move nothing, and the next one would
      * repeat the same solve from the same error (later passes start from phi = 0): such a
-     * pass ends the step's passes (the step is the same bit for bit). With density_wait =
-     * N > 0, the next N steps (doubling while it recurs, up to 16 N) also take one pass
-     * (above density_limit the descent below follows, as after stalled passes); a later
-     * pass that moves resets the wait. A skipped pass that would have had step length 0
-     * leaves the step the same; one that would have moved leaves a little more error. At
-     * 10^6 particles most second passes have step length 0 (the error left after the first
-     * lives in the modes whose wide divergence the compact Laplacian gets wrong: the
-     * odd-even columns next to the free surface), and the wait saves about a third of the
-     * pressure-type solves. Not the default: it changes the stability suite's long thin
-     * film, which in make check's -O1 build then ends with particles inside it flagged as
-     * free surface. */
-    for (int q = 0; q < SPH_MAX_DENSITY_PASSES; q++) {
+     * pass ends the step's passes (the step is the same bit for bit). */
+    for (int q = 0; q < MAX_DENSITY_PASSES; q++) {
         double e = w->st.max_density_error;
         if (q > 0 && e <= w->par.density_tol) break;
-        if (q >= np && !(lim > 0 && e > lim)) break;
-        if (q > 0 && w->steps < w->passes_after) { /* density_wait */
-            w->st.density_skipped++;
-            break;
-        }
+        if (q >= DENSITY_PASSES && !(e > DENSITY_LIMIT)) break;
         double alpha;
         if (density_pass(w, q, &alpha)) return -1;
         w->st.density_passes++;
         if (q > 0) w->later_stalled = alpha == 0.0;
-        if (q > 0 && alpha == 0.0) {
-            int w0 = w->par.density_wait;
-            if (w0 > 0) {
-                w->passes_wait = next_wait(w->passes_wait, w0, 16 * w0);
-                w->passes_after = w->steps + w->passes_wait;
-            }
-            break;
-        }
-        if (q > 0) w->passes_wait = 0;
+        if (q > 0 && alpha == 0.0) break;
     }
-    /* Every pass used and the error still above density_limit: the passes have stalled
+    /* Every pass used and the error still above DENSITY_LIMIT: the passes have stalled
      * (their step length goes to 0 where the displacement's continuity rate is mostly
      * row-to-row noise). First the descent (density_descent, above: it always lowers the
-     * error); if that leaves it above density_limit, one GMRES correction (density_gmres)
+     * error); if that leaves it above DENSITY_LIMIT, one GMRES correction (density_gmres)
      * combines directions instead. When it removes less than 5 % of the error (L2) the next
      * fallback waits FALLBACK_WAIT steps, doubling with each useless one up to
      * FALLBACK_WAIT_MAX; one that helps resets the wait. A few corrections do the work, and a
      * fallback at every stalled step would double the cost of a case whose corners no pass
      * clears (the closed cavity). */
     descend_if_above(w);
-    if (lim > 0 && w->st.max_density_error > lim && w->steps >= w->fallback_after) {
+    if (w->st.max_density_error > DENSITY_LIMIT && w->steps >= w->fallback_after) {
         int passes = w->st.density_passes;
         double alpha = w->st.density_alpha;
         if (density_gmres(w)) return -1;
         double left = w->st.density_alpha; /* L2 error left over the error before */
         if (left > FALLBACK_USELESS) { /* waits 10, 20, 40, ..., 640, 640, ... steps */
-            w->fallback_wait = next_wait(w->fallback_wait, FALLBACK_WAIT, FALLBACK_WAIT_MAX);
+            int wait = w->fallback_wait;
+            w->fallback_wait = wait == 0 ? FALLBACK_WAIT : wait < FALLBACK_WAIT_MAX ? 2 * wait : wait;
             w->fallback_after = w->steps + w->fallback_wait;
         } else {
             w->fallback_wait = 0;
@@ -214,10 +164,7 @@ int sph_density_correct(sph_world *w) {
 }
 /* One correction; pass 0 warm-starts from the last step's phi and keeps its solution for
  * the next step, later passes start from zero in a scratch array. The solve stops at
- * density_solve_tol (1e-3), not the pressure's tol (1e-6): the density follows the
- * displacement actually made (continuity of dx, dy, with the least-squares step length),
- * so a looser phi only removes a little less error per pass, for a third fewer
- * pressure-type iterations. */
+ * DENSITY_SOLVE_TOL (1e-3), not the pressure's tol (1e-6). */
 /* x += alpha (dx, dy) for fluid, rho += alpha d for interior fluid (d: the continuity
  * change of the whole displacement); returns the max density error left. */
 static double displace(sph_world *w, const double *dx, const double *dy, const double *d, double alpha) {
@@ -256,7 +203,7 @@ static void displacement(sph_world *w, const double *f, int diff, double *dx, do
  * displacement -grad f / rho of every fluid particle into (dx, dy), in the difference form
  * (diff) or the symmetric one. */
 static int correction_solve(sph_world *w, double tol, double *f, int diff, double *dx, double *dy) {
-    sph_solve_result res = sph_solver_pcg(&w->solver, &w->A, w->b, w->sol, tol, w->par.max_iter, w->threads);
+    sph_solve_result res = sph_solver_pcg(&w->solver, &w->A, w->b, w->sol, tol, SPH_SOLVE_MAX_ITER, w->threads);
     if (!res.converged)
         return sph_world_fail(w,
                               "density correction solver did not converge at step %ld (t = %g): "
@@ -266,15 +213,14 @@ static int correction_solve(sph_world *w, double tol, double *f, int diff, doubl
     w->st.solver_iterations_total += res.iterations;
     sph_lap(w, SPH_PHASE_PRESSURE_SOLVE);
     sph_pressure_scatter(w, w->sol, f, 0);
-    /* density_gradient: the symmetric form ("auto"'s until its first passes go over to
-     * the difference form, and its later passes and GMRES directions always; density_pass)
-     * carries phi_i sum_j m_j grad W_ij, which does not vanish where the support is cut
-     * (the free surface) or the particles are disordered. At 10^6 particles phi is large
-     * against its source and that term decides the direction: the first pass's step length
-     * falls to about 0.3 and the error stays near density_limit. The renormalised difference
-     * form keeps the step length at 1, but it worsens the thin-film validations and the
-     * cavity, mostly through the longer time step its lower error allows: an option
-     * (docs/api.md). */
+    /* The symmetric form (the first passes' until one falls short, see density_pass; the
+     * later passes' and the GMRES directions' always) carries phi_i sum_j m_j grad W_ij,
+     * which does not vanish where the support is cut (the free surface) or the particles
+     * are disordered. At 10^6 particles phi is large against its source and that term
+     * decides the direction: the first pass's step length falls to about 0.3 and the error
+     * stays near DENSITY_LIMIT. The renormalised difference form keeps the step length at 1,
+     * but taken everywhere it worsens the thin-film validations and the cavity, mostly
+     * through the longer time step its lower error allows. */
     displacement(w, f, diff, dx, dy);
     return 0;
 }
@@ -299,38 +245,37 @@ static double step_length(sph_world *w, const double *dx, const double *dy, doub
 }
 
 /* *alpha: the pass's step length (1 when there was nothing to move). A later pass after
- * one of step length 0 (density_probe) tries the direction of a loose solve first. */
+ * one of step length 0 tries the direction of a loose solve first (the probe, below). */
 static int density_pass(sph_world *w, int pass, double *alpha_out) {
-    double gamma = w->par.density_relax, rho0 = w->par.rho0;
+    double rho0 = w->par.rho0;
     int nrows = w->nrows;
     *alpha_out = 1.0;
-    if (gamma <= 0 || nrows == 0) return 0;
+    if (nrows == 0) return 0;
     double bmax = 0.0;
 #pragma omp parallel for schedule(static) num_threads(w->threads) reduction(max : bmax)
     for (int r = 0; r < nrows; r++) {
         int i = w->row_of[r];
-        double s = w->kind[i] == SPH_FLUID ? gamma * (rho0 - w->rho[i]) / rho0 : 0.0;
+        double s = w->kind[i] == SPH_FLUID ? (rho0 - w->rho[i]) / rho0 : 0.0;
         w->b[r] = -w->m[i] * s;
         w->sol[r] = pass ? 0.0 : w->phi[i];
         if (fabs(s) > bmax) bmax = fabs(s);
     }
     sph_lap(w, SPH_PHASE_CORRECTION);
     if (bmax == 0.0) return 0;
-    if (w->pin >= 0) sph_pressure_make_compatible(w, -w->m[w->pin] * gamma * (rho0 - w->rho[w->pin]) / rho0);
+    if (w->pin >= 0) sph_pressure_make_compatible(w, -w->m[w->pin] * (rho0 - w->rho[w->pin]) / rho0);
     double *f = pass ? w->dp : w->phi, *dx = w->xs, *dy = w->ys, *d = w->sb;
-    /* the form of the displacement: density_gradient's; with "auto", a first pass starts
-     * from the form that won the last one (below) */
-    int auto_first = pass == 0 && w->par.density_gradient == SPH_GRAD_AUTO;
-    int diff = w->par.density_gradient == SPH_GRAD_DIFFERENCE || (auto_first && w->first_difference);
-    /* density_probe: a later pass after one of step length 0 is likely to get 0 again (the
+    /* the form of the displacement: symmetric, but a first pass starts from the form that
+     * won the last one (below) */
+    int first = pass == 0;
+    int diff = first && w->first_difference;
+    /* The probe: a later pass after one of step length 0 is likely to get 0 again (the
      * error left lives in modes the passes cannot reach); a loose solve (relative residual
-     * density_probe, from zero) gives its direction's step length first. 0: the pass ends
-     * (it would have moved nothing); else the full solve from zero, the pass exactly as
-     * without the probe. At 0.1 a probe of 0 is one whose full pass moves nothing too, and
-     * at 10^6 particles it saves about a seventh of the pressure-type iterations. */
-    if (pass > 0 && w->later_stalled && w->par.density_probe > 0) {
+     * PROBE_TOL, from zero) gives its direction's step length first. 0: the pass ends (it
+     * would have moved nothing); else the full solve from zero, the pass exactly as without
+     * the probe. At 10^6 particles it saves about a seventh of the pressure-type iterations. */
+    if (pass > 0 && w->later_stalled) {
         w->st.density_probes++;
-        if (correction_solve(w, w->par.density_probe, f, diff, dx, dy)) return -1;
+        if (correction_solve(w, PROBE_TOL, f, diff, dx, dy)) return -1;
         if (step_length(w, dx, dy, d, NULL) == 0.0) {
             w->st.density_probes_ended++;
             *alpha_out = 0.0;
@@ -339,7 +284,7 @@ static int density_pass(sph_world *w, int pass, double *alpha_out) {
         }
         for (int r = 0; r < nrows; r++) w->sol[r] = 0.0; /* the full solve, as without the probe */
     }
-    if (correction_solve(w, w->par.density_solve_tol, f, diff, dx, dy)) return -1;
+    if (correction_solve(w, DENSITY_SOLVE_TOL, f, diff, dx, dy)) return -1;
     /* The step length: the density change is linear in the displacement, d_i =
      * sph_field_div(dx, dy), so alpha = -sum e_i d_i / sum d_i^2 (clamped to [0, 1]; e
      * the density error, over interior fluid) is the one that leaves the least squared
@@ -349,20 +294,18 @@ static int density_pass(sph_world *w, int pass, double *alpha_out) {
      * error then grows from step to step until a particle goes through a plate). Where
      * those modes are absent alpha stays 1. */
     double gain, alpha = step_length(w, dx, dy, d, &gain);
-    /* density_gradient = "auto" (the default): a step's first pass moves along the
-     * symmetric gradient's direction until one falls short (step length under 1); that pass
-     * also tries the difference form's direction of the same phi (one gradient and one
-     * divergence sweep, no solve) and moves along the one that lowers the squared error
-     * more. The winner is the next first pass's starting form, and the other is tried only
+    /* The form: a step's first pass moves along the symmetric gradient's direction until
+     * one falls short (step length under 1); that pass also tries the difference form's
+     * direction of the same phi (one gradient and one divergence sweep, no solve) and moves
+     * along the one that lowers the squared error more. The winner is the next first pass's starting form, and the other is tried only
      * when it falls short in turn: switching back at once makes the two forms alternate and
      * loses the first pass's warm start. Where the symmetric form works nothing changes (at
      * 10^4 and 10^5 particles it never falls short); at 10^6 the difference direction wins
      * from the start and keeps winning (docs/performance.md). Only the first pass: a later
      * pass whose symmetric direction moves nothing is where the thin films' error stays
      * above density_tol and holds their time step down, which is what keeps their force
-     * accurate. The second direction lives in the projection's scratch (ru, rv) and the
-     * later passes' (dp). */
-    if (auto_first && alpha < 1.0) {
+     * accurate. The second direction lives in the scratch ru, rv and the later passes' dp. */
+    if (first && alpha < 1.0) {
         double *hx = w->ru, *hy = w->rv, *hd = w->dp, gain2;
         displacement(w, f, !diff, hx, hy);
         double alpha2 = step_length(w, hx, hy, hd, &gain2);
@@ -374,7 +317,7 @@ static int density_pass(sph_world *w, int pass, double *alpha_out) {
             d = hd;
         }
     }
-    if (auto_first && w->first_difference) w->st.density_switches++;
+    if (first && w->first_difference) w->st.density_switches++;
     *alpha_out = alpha;
     w->st.max_density_error = displace(w, dx, dy, d, alpha);
     w->st.density_alpha = fmin(w->st.density_alpha, alpha);
@@ -395,18 +338,17 @@ static int density_pass(sph_world *w, int pass, double *alpha_out) {
  * stays; a combination of two or three directions cancels much of the noise.
  * On a Newtonian film started thin (dx = 1/80) it holds the error under 0.8 % where the
  * passes, at step length 0, leave 8.6 %.
- * The iterations follow density_passes (at least that many while the error is above
- * density_tol) and density_limit (more, up to SPH_MAX_GMRES, while the error left would
+ * The iterations follow DENSITY_PASSES (at least that many while the error is above
+ * density_tol) and DENSITY_LIMIT (more, up to MAX_GMRES, while the error left would
  * still exceed it); density_passes in the stats counts the directions, density_alpha
  * is the L2 error left over the error before (1: nothing removed). */
 static int density_gmres(sph_world *w) {
-    double rho0 = w->par.rho0, tol = w->par.density_tol, lim = w->par.density_limit;
+    double rho0 = w->par.rho0, tol = w->par.density_tol;
     int n = w->n, nt = w->n + w->ng, nrows = w->nrows, th = w->threads;
-    int K = w->par.density_passes, Kmax = SPH_MAX_GMRES;
-    if (K > Kmax) K = Kmax;
+    int K = DENSITY_PASSES, Kmax = MAX_GMRES;
     w->st.density_alpha = 1.0;
     w->st.density_passes = 0;
-    if (w->par.density_relax <= 0 || nrows == 0 || w->st.max_density_error <= tol) return 0;
+    if (nrows == 0 || w->st.max_density_error <= tol) return 0;
     size_t N = (size_t)w->cap, need = (size_t)(3 * Kmax + 1) * N;
     if (w->gm_len < need) {
         double *q = realloc(w->gm, need * sizeof(double));
@@ -415,7 +357,7 @@ static int density_gmres(sph_world *w) {
         w->gm_len = need;
     }
     double *V = w->gm, *DX = V + (size_t)(Kmax + 1) * N, *DY = DX + (size_t)Kmax * N;
-    double H[SPH_MAX_GMRES + 1][SPH_MAX_GMRES] = {{0}}, y[SPH_MAX_GMRES] = {0};
+    double H[MAX_GMRES + 1][MAX_GMRES] = {{0}}, y[MAX_GMRES] = {0};
     double beta = 0.0;
 #pragma omp parallel for schedule(static) num_threads(th) reduction(+ : beta)
     for (int i = 0; i < n; i++) {
@@ -439,9 +381,7 @@ static int density_gmres(sph_world *w) {
         }
         sph_lap(w, SPH_PHASE_CORRECTION);
         if (w->pin >= 0) sph_pressure_make_compatible(w, w->m[w->pin] * vk[w->pin]);
-        if (correction_solve(w, w->par.density_solve_tol, w->dp, w->par.density_gradient == SPH_GRAD_DIFFERENCE, dx,
-                             dy))
-            return -1;
+        if (correction_solve(w, DENSITY_SOLVE_TOL, w->dp, 0, dx, dy)) return -1;
         if (m == 0) {
 #pragma omp parallel for schedule(static) num_threads(th)
             for (int i = 0; i < nt; i++) w->phi[i] = beta * w->dp[i];
@@ -471,7 +411,7 @@ static int density_gmres(sph_world *w) {
         }
         m++;
         /* min || beta e_1 + Hbar y ||: normal equations Hbar^T Hbar y = -beta Hbar^T e_1 */
-        double a[SPH_MAX_GMRES][SPH_MAX_GMRES];
+        double a[MAX_GMRES][MAX_GMRES];
         for (int r = 0; r < m; r++) {
             for (int c = 0; c < m; c++) {
                 double sum = 0.0;
@@ -480,9 +420,9 @@ static int density_gmres(sph_world *w) {
             }
             y[r] = -beta * H[0][r];
         }
-        sph_pressure_dense_solve(m, &a[0][0], SPH_MAX_GMRES, y);
+        sph_pressure_dense_solve(m, &a[0][0], MAX_GMRES, y);
         /* the error left, e + B V y = V_{0..m} g with g = beta e_1 + Hbar y */
-        double g[SPH_MAX_GMRES + 1], gg = 0.0, maxe = 0.0;
+        double g[MAX_GMRES + 1], gg = 0.0, maxe = 0.0;
         for (int q = 0; q <= m; q++) {
             g[q] = q == 0 ? beta : 0.0;
             for (int c = 0; c < m; c++) g[q] += H[q][c] * y[c];
@@ -496,7 +436,7 @@ static int density_gmres(sph_world *w) {
         }
         w->st.density_alpha = sqrt(gg) / beta;
         if (hn == 0.0 || maxe <= tol) break;
-        if (m >= K && !(lim > 0 && maxe > lim)) break;
+        if (m >= K && !(maxe > DENSITY_LIMIT)) break;
     }
     w->st.density_passes = m;
     /* move once by the combined displacement; the density follows its continuity rate */

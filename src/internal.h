@@ -165,7 +165,7 @@ typedef struct sph_solver {
     sph_amg amg, amg2;      /* one hierarchy per system (pressure, viscous), kept across steps */
     sph_amg *cur;           /* the one in use                                             */
     int first_pending;      /* the next solve is the first since the last setup           */
-    const sph_csr *amg_for; /* the matrix the AMG hierarchy was set up for (NULL: Jacobi) */
+    const sph_csr *amg_for; /* the matrix the AMG hierarchy was set up for (NULL: none) */
     long reuses;            /* setups answered by reusing a hierarchy (statistics)        */
     double setup_time, solve_time; /* seconds, accumulated */
     long solves;                   /* sph_solver_pcg calls on a non-empty system */
@@ -205,7 +205,7 @@ struct sph_world {
     double *sa, *sb;           /* scratch per particle for the sweeps (f / rho^2,
                                   the source velocity of the pressure system)        */
     double *cx, *cy;           /* positions in cell order: cx[k] = x[cell_items[k]]  */
-    double *ru, *rv;           /* a projection pass's velocity field (pressure.c)    */
+    double *ru, *rv;           /* scratch: a first density pass's second direction   */
     int *kind, *mat, *id;      /* SPH_FLUID or plate index; material; stable id     */
     int *src;                  /* ghosts: the real particle they image; reals: self */
     signed char *gsx, *gsy;    /* ghosts: sign applied to u, v (mirror: -1)         */
@@ -259,17 +259,14 @@ struct sph_world {
     sph_solver solver;
     double *b, *sol;           /* right-hand side and solution, per row              */
     double *bk[SPH_MAX_LOADED], *solk[SPH_MAX_LOADED]; /* loaded plates' sensitivities */
-    double *rq;                /* a projection pass's solution, per row (pressure.c)  */
     int rows_cap;
     int nrows;
     int pin;                   /* pinned pressure unknown (no free surface) or -1    */
     long fallback_after;       /* density.c: no GMRES fallback before this step      */
     int fallback_wait;         /* the last wait set (0: the last fallback helped)    */
-    long passes_after;         /* density.c: one density pass a step before this step */
-    int passes_wait;           /* the last such wait (0: the last later pass moved)  */
     int later_stalled;         /* density.c: the last later pass had step length 0   */
     int first_difference;      /* density.c: the last first pass moved along the
-                                  difference form (density_gradient = "auto")       */
+                                  difference form's direction                        */
     int *row_of;               /* row -> particle                                   */
 
     double t, dt, wall_time;
@@ -312,10 +309,6 @@ void sph_boundary_sync(sph_world *w, double *a, double *b, int vector);
 int sph_plate_fill(sph_world *w, const double rect[4], int axis);
 /* No-slip factor beta = 1 + dB/da (clamped) for fluid a and wall particle b. */
 double sph_plate_noslip(const sph_world *w, int a, int b);
-/* distances of fluid particle a and wall particle b from b's plate face nearest to a;
- * returns 1 for a horizontal face with a over the plate, 2 for a vertical face with a
- * beside it, 0 for a off the plate's extent */
-int sph_plate_wall_distances(const sph_world *w, int a, int b, double *da, double *db);
 /* Velocity of wall particle b along x, y. */
 void sph_plate_wall_velocity(const sph_world *w, int b, double *vx, double *vy);
 void sph_plate_rigid_velocity(const sph_world *w, int b, double *vx, double *vy);
@@ -419,6 +412,9 @@ double sph_timestep_compute(sph_world *w);
 void sph_timestep_explain(const sph_world *w, char *buf, size_t len);
 
 /* solver.c */
+/* The engine's iteration limit for every solve: far above what any converging one takes
+ * (tens), so only a solve that cannot converge reaches it and stops the step. */
+#define SPH_SOLVE_MAX_ITER 5000
 /* realloc *p to count elements of elem bytes (at least one); -1 when out of memory, *p kept. */
 int sph_grow(void **p, size_t elem, int count);
 int sph_csr_reserve(sph_csr *a, int n, int nnz);
@@ -426,21 +422,20 @@ void sph_csr_free(sph_csr *a);
 void sph_csr_matvec(const sph_csr *a, const double *x, double *y, int threads);
 int sph_solver_reserve(sph_solver *s, int n);
 void sph_solver_free(sph_solver *s);
-/* Choose the preconditioner for the solves on matrix a that follow (until the next setup):
- * SPH_SOLVER_AMG builds the multigrid hierarchy of a (its values and structure now; a later
- * change of a's values keeps the hierarchy, which stays a valid SPD preconditioner);
- * SPH_SOLVER_JACOBI drops it. 0, or -1 when out of memory or the coarse operator is not
- * positive definite (then the solves fall back to Jacobi). */
-int sph_solver_setup(sph_solver *s, const sph_csr *a, sph_linear_solver kind, int threads);
+/* The preconditioner for the solves on matrix a that follow (until the next setup): the
+ * multigrid hierarchy of a (its values and structure now; a later change of a's values
+ * keeps the hierarchy, which stays a valid SPD preconditioner). 0, or -1 when out of
+ * memory or the coarse operator is not positive definite (then no hierarchy is set up, and
+ * a solve on a fails). */
+int sph_solver_setup(sph_solver *s, const sph_csr *a, int threads);
 /* As sph_solver_setup, but the hierarchy built for a at an earlier step may be kept
  * (see solver.c, "Reuse across steps"): row r of a is particle row_of[r], whose stable id
  * is id[row_of[r]]; the finest level's smoother always takes a's current values. */
-int sph_solver_setup_reuse(sph_solver *s, const sph_csr *a, sph_linear_solver kind, int threads,
-                           const int *row_of, const int *id);
+int sph_solver_setup_reuse(sph_solver *s, const sph_csr *a, int threads, const int *row_of, const int *id);
 /* a's values changed since the setup (same structure and size, still SPD): the AMG
  * hierarchy is kept, the finest level's smoother takes the new values (without it the
  * cycle smooths with the old ones: still a valid preconditioner, a weaker one). 0, or -1
- * when out of memory (the solves then fall back to Jacobi). */
+ * when out of memory (then no hierarchy is set up, and a solve on a fails). */
 int sph_solver_refresh(sph_solver *s, const sph_csr *a, int threads);
 /* Apply the hierarchy set up for a (the last setup) as a V-cycle: every level visits the
  * next once (the default is a W-cycle below the finest level; a setup restores it). For
@@ -456,8 +451,8 @@ int sph_solver_second(sph_solver *s, const sph_csr *a, const sph_csr *a2, int th
  * and id (row r is particle id[row_of[r]]) the hierarchy is reused across steps by the
  * rules of sph_solver_setup_reuse, the finest smoother rebuilt from both matrices' values;
  * with 0, 0 it is built afresh. */
-int sph_solver_setup_pair(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_solver kind, int threads,
-                          const int *row_of, const int *id);
+int sph_solver_setup_pair(sph_solver *s, const sph_csr *a, const sph_csr *a2, int threads, const int *row_of,
+                          const int *id);
 /* First guesses (the viscous and pressure solves): the change of the next solve taken as
  * a d - b d1, extrapolated per unit time from the last two solves' changes ((2 d / dt_n -
  * d1 / dt_{n-1}) dt), from the last one alone (b = 0) when only it was for the same n
@@ -470,12 +465,13 @@ double *sph_guess_keep(sph_guess *g, int n, double dt);
  * sph_solver_setup_pair, or by sph_solver_second after the setup for a1), solved side by
  * side: each iteration reads the structure once for both (CG's product and the multigrid
  * cycle). Each system's iterates are those of sph_solver_pcg on it alone (the same
- * arithmetic, bit for bit). res[0], res[1]: the two results. */
+ * arithmetic, bit for bit). res[0], res[1]: the two results (both fail, not converged after
+ * 0 iterations, without such a setup). */
 void sph_solver_pcg2(sph_solver *s, const sph_csr *a1, const sph_csr *a2, const double *b1, const double *b2,
                      double *x1, double *x2, double tol, int max_iter, int threads, sph_solve_result res[2]);
-/* Preconditioned conjugate gradients for SPD a: x holds the initial guess. The
- * preconditioner is the AMG cycle when the last sph_solver_setup was for a with AMG,
- * Jacobi otherwise. */
+/* Conjugate gradients for SPD a preconditioned by the multigrid cycle of the last setup,
+ * which must have been for a (else the solve fails: not converged after 0 iterations);
+ * x holds the initial guess. */
 sph_solve_result sph_solver_pcg(sph_solver *s, const sph_csr *a, const double *b, double *x,
                                 double tol, int max_iter, int threads);
 

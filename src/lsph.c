@@ -215,12 +215,37 @@ static int opt_choice(lua_State *L, const char *key, const char *first, const ch
     return opt_pick(L, key, names, def);
 }
 
+/* Options sph.world once took, and what the engine now always does instead: a script that
+ * passes one gets this rather than the plain "unknown option". */
+static const char *const REMOVED[][2] = {
+    {"cvisc", "limits dt to 0.125 rho h^2 / max eta with explicit viscosity"},
+    {"cforce", "limits dt to 0.25 sqrt(h / max acceleration)"},
+    {"max_iter", "allows 5000 iterations a solve"},
+    {"solver", "preconditions its solves with algebraic multigrid"},
+    {"pressure_predictor", "carries the last step's pressure gradient in the implicit viscous step"},
+    {"wall", "extrapolates the wall velocity linearly (Morris)"},
+    {"projection_passes", "projects once a step"},
+    {"dt_growth", "lets dt grow by at most 25 % a step"},
+    {"density_relax", "aims to remove the whole density error"},
+    {"density_passes", "makes up to 2 density passes a step while the error exceeds density_tol"},
+    {"density_limit", "makes more passes, then descent moves, while the density error exceeds 0.8 %"},
+    {"density_descent", "makes up to 20 descent moves when the density passes stall"},
+    {"density_solve_tol", "solves the density correction to a relative residual of 1e-3"},
+    {"density_diffusion", "leaves the density unfiltered"},
+    {"density_wait", "makes the passes the density error asks for at every step"},
+    {"density_probe", "tries a later density pass after one that moved nothing on a loose solve first"},
+    {"density_gradient", "moves the first density pass along whichever gradient lowers the error more"},
+};
+
 static int l_world(lua_State *L) {
-    static const char *const keys[] = {"dx", "h", "rho", "gravity", "viscosity", "shifting",
-                                       "cfl", "cvisc", "cforce", "dt_max", "periodic", "symmetry",
-                                       "threads", "tol", "visc_tol", "max_iter", "surface", "density_relax",
-                                       "density_tol", "density_passes", "density_limit", "density_diffusion", "density_solve_tol", "pressure_predictor", "solver", "density_correction", "pressure_gradient", "wall", "projection_passes", "density_descent", "dt_growth", "density_wait", "density_probe", "density_gradient", 0};
+    static const char *const keys[] = {"dx", "h", "rho", "gravity", "viscosity", "shifting", "cfl", "dt_max",
+                                       "periodic", "symmetry", "threads", "tol", "visc_tol", "surface",
+                                       "density_tol", "density_correction", "pressure_gradient", 0};
     luaL_checktype(L, 1, LUA_TTABLE);
+    for (size_t k = 0; k < sizeof REMOVED / sizeof REMOVED[0]; k++)
+        if (sph_lua_opt_present(L, 1, REMOVED[k][0]))
+            luaL_error(L, "bad argument to 'world' ('%s' was removed: the engine now always %s)", REMOVED[k][0],
+                       REMOVED[k][1]);
     sph_lua_opt_only(L, 1, "world", keys);
     sph_params p;
     sph_params_default(&p);
@@ -230,8 +255,6 @@ static int l_world(lua_State *L) {
     p.rho0 = sph_lua_opt_number(L, 1, "world", "rho", 1);
     p.shifting = sph_lua_opt_number(L, 1, "world", "shifting", 0);
     p.cfl = sph_lua_opt_number(L, 1, "world", "cfl", p.cfl);
-    p.cvisc = sph_lua_opt_number(L, 1, "world", "cvisc", p.cvisc);
-    p.cforce = sph_lua_opt_number(L, 1, "world", "cforce", p.cforce);
     p.dt_max = sph_lua_opt_number(L, 1, "world", "dt_max", 0);
     /* checked as a double: converting one beyond int (threads = 1e20) is undefined */
     double threads = sph_lua_opt_number(L, 1, "world", "threads", 0);
@@ -243,22 +266,8 @@ static int l_world(lua_State *L) {
     p.threads = (int)threads;
     p.tol = sph_lua_opt_number(L, 1, "world", "tol", p.tol);
     p.visc_tol = sph_lua_opt_number(L, 1, "world", "visc_tol", p.visc_tol);
-    p.max_iter = (int)sph_lua_opt_number(L, 1, "world", "max_iter", p.max_iter);
     p.surface_div = sph_lua_opt_number(L, 1, "world", "surface", p.surface_div);
-    p.density_relax = sph_lua_opt_number(L, 1, "world", "density_relax", p.density_relax);
     p.density_tol = sph_lua_opt_number(L, 1, "world", "density_tol", p.density_tol);
-    p.density_passes = (int)sph_lua_opt_number(L, 1, "world", "density_passes", p.density_passes);
-    p.projection_passes = (int)sph_lua_opt_number(L, 1, "world", "projection_passes", p.projection_passes);
-    p.density_limit = sph_lua_opt_number(L, 1, "world", "density_limit", p.density_limit);
-    p.density_descent = (int)sph_lua_opt_number(L, 1, "world", "density_descent", p.density_descent);
-    double dwait = sph_lua_opt_number(L, 1, "world", "density_wait", p.density_wait);
-    if (!(dwait >= 0 && dwait <= 1000 && dwait == floor(dwait)))
-        luaL_error(L, "bad argument to 'world' (density_wait: an integer in [0, 1000] expected, got %f)", dwait);
-    p.density_wait = (int)dwait;
-    p.density_probe = sph_lua_opt_number(L, 1, "world", "density_probe", p.density_probe);
-    p.density_diffusion = sph_lua_opt_number(L, 1, "world", "density_diffusion", p.density_diffusion);
-    p.density_solve_tol = sph_lua_opt_number(L, 1, "world", "density_solve_tol", p.density_solve_tol);
-    p.pressure_predictor = sph_lua_opt_number(L, 1, "world", "pressure_predictor", p.pressure_predictor);
     if (!(p.shifting >= 0)) luaL_error(L, "bad argument to 'world' (shifting: number >= 0 expected)");
     if (!(p.dx > 0)) luaL_error(L, "bad argument to 'world' (dx: positive number expected, got %f)", p.dx);
     int t = lua_getfield(L, 1, "gravity");
@@ -279,12 +288,6 @@ static int l_world(lua_State *L) {
     p.pressure_gradient = opt_choice(L, "pressure_gradient", "symmetric", "difference",
                                      p.pressure_gradient == SPH_GRAD_DIFFERENCE)
                               ? SPH_GRAD_DIFFERENCE : SPH_GRAD_SYMMETRIC;
-    static const char *const gradients[] = {"symmetric", "difference", "auto", 0}; /* SPH_GRAD_* order */
-    p.density_gradient = opt_pick(L, "density_gradient", gradients, p.density_gradient);
-    p.wall_curved = opt_choice(L, "wall", "linear", "curved", p.wall_curved);
-    p.dt_eased = opt_choice(L, "dt_growth", "fixed", "eased", p.dt_eased);
-    p.solver = opt_choice(L, "solver", "amg", "jacobi", p.solver == SPH_SOLVER_JACOBI) ? SPH_SOLVER_JACOBI
-                                                                                       : SPH_SOLVER_AMG;
     t = lua_getfield(L, 1, "periodic");
     if (t == LUA_TTABLE) {
         axis_range(L, lua_gettop(L), "world", "periodic", "x", &p.periodic[0], &p.period_lo[0], &p.period_hi[0]);
@@ -620,7 +623,6 @@ static int w_stats(lua_State *L) {
     SETI("density_passes", s.density_passes);
     SETI("density_fallbacks", s.density_fallbacks);
     SETI("density_descents", s.density_descents);
-    SETI("density_skipped", s.density_skipped);
     SETI("density_switches", s.density_switches);
     SETI("density_probes", s.density_probes);
     SETI("density_probes_ended", s.density_probes_ended);

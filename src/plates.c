@@ -134,7 +134,8 @@ void sph_plate_rigid_velocity(const sph_world *w, int b, double *vx, double *vy)
     else if (pl->axis == 1) *vy = pl->vel * w->gsy[b];
 }
 
-int sph_plate_wall_distances(const sph_world *w, int a, int b, double *da_out, double *db_out) {
+/* The distances of fluid particle a and wall particle b from b's plate face nearest to a. */
+static void wall_distances(const sph_world *w, int a, int b, double *da_out, double *db_out) {
     const sph_plate *pl = &w->plates[w->kind[b]];
     const double *R = pl->rect;
     double xa = w->x[a], ya = w->y[a], xb = w->x[b], yb = w->y[b];
@@ -155,15 +156,11 @@ int sph_plate_wall_distances(const sph_world *w, int a, int b, double *da_out, d
     }
     *da_out = da;
     *db_out = db;
-    /* 1: a horizontal face (normal along y) with a over the plate; 2: a vertical one with a
-     * beside it; 0: a off the plate's extent (a corner, or an image's end of a moving plate) */
-    if (oy >= ox) return ox == 0.0 ? 1 : 0;
-    return oy == 0.0 ? 2 : 0;
 }
 
 double sph_plate_noslip(const sph_world *w, int a, int b) {
     double da, db, floor_a = 0.5 * w->dx;
-    sph_plate_wall_distances(w, a, b, &da, &db);
+    wall_distances(w, a, b, &da, &db);
     return 1.0 + db / (da > floor_a ? da : floor_a);
 }
 

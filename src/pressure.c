@@ -2,7 +2,7 @@
  * with the density error corrected apart from the pressure:
  *   div((1/rho) grad p)_i = -sum_j m_j (u*_i - u*_j) . grad_i W_ij / (rho0 dt)
  * (the divergence-free source), u^{n+1} = u* - dt grad p / rho; then, with the same matrix,
- *   div((1/rho) grad phi)_i = gamma (rho0 - rho_i) / rho0,   x_i -= grad phi_i / rho_i.
+ *   div((1/rho) grad phi)_i = (rho0 - rho_i) / rho0,   x_i -= grad phi_i / rho_i.
  * phi = dt^2 p_rel is the part of the paper's density-invariant source (rho0 - rho*) /
  * (rho0 dt^2) (PHYSICS.md allows the blend) that corrects the density error of earlier
  * steps. Inside the pressure it would scale as 1 / dt^2 for a given error, so a step
@@ -21,15 +21,15 @@
  * equations M (V - V^n) / dt = F_load + F_fluid(p(V)) become a small dense system. This is
  * stable whatever the plate's mass against the fluid's added mass.
  *
- * Pressure predictor (pressure_predictor = beta, default 1; implicit viscosity only): the
- * viscous step solves (rho / dt - div eta grad) u* = rho u^n / dt - beta grad p~, with p~
- * the last step's pressure at the current positions, kernel-averaged (see
- * sph_pressure_predictor), and takes beta dt grad p~ / rho back before the projection,
- * which then solves for the whole p^{n+1}. Away from walls the two terms cancel; at a
- * no-slip wall the viscous solve turns the pressure-driven part of the flow into its shear
- * profile inside the step. Without it the projection's -dt grad p / rho slides along the
- * wall and the next viscous step takes the slip back: a splitting error of order
- * dt eta / (rho h^2), which makes the squeeze forces depend on dt. The projection does not
+ * Pressure predictor (implicit viscosity only): the viscous step solves
+ * (rho / dt - div eta grad) u* = rho u^n / dt - grad p~, with p~ the last step's pressure
+ * at the current positions, kernel-averaged (see sph_pressure_predictor), and takes
+ * dt grad p~ / rho back before the projection, which then solves for the whole p^{n+1}.
+ * Away from walls the two terms cancel; at a no-slip wall the viscous solve turns the
+ * pressure-driven part of the flow into its shear profile inside the step. Without it the
+ * projection's -dt grad p / rho slides along the wall and the next viscous step takes the
+ * slip back: a splitting error of order dt eta / (rho h^2), which makes the squeeze forces
+ * depend on dt. The projection does not
  * solve for an increment p - p~: with the wide divergence of the symmetric gradient against
  * the compact Laplacian (DG != L) an incremental scheme feeds p^n into itself, and where
  * the viscous solve is stiff it cannot restore the pressure the kernel average erodes a
@@ -57,11 +57,10 @@
 static int reserve_rows(sph_world *w, int nrows) {
     if (nrows <= w->rows_cap && w->b) return 0;
     int cap = nrows + nrows / 4 + 64;
-    double **arr[3 + 2 * SPH_MAX_LOADED];
+    double **arr[2 + 2 * SPH_MAX_LOADED];
     int na = 0;
     arr[na++] = &w->b;
     arr[na++] = &w->sol;
-    arr[na++] = &w->rq;
     for (int k = 0; k < SPH_MAX_LOADED; k++) {
         arr[na++] = &w->bk[k];
         arr[na++] = &w->solk[k];
@@ -234,76 +233,6 @@ int sph_pressure_dense_solve(int n, double *a, int lda, double *x) {
 }
 #undef A_
 
-static void shepard(sph_world *w, double *p, double *pt);
-
-/* The velocity field a pressure field p makes (ghosts synced): for the flow (plate < 0), u* -
- * dt grad p / rho on fluid particles and the source's velocity on walls; for a loaded
- * plate's sensitivity (plate = its index), -dt grad p / rho and the plate's unit velocity. */
-static void projected_velocity(sph_world *w, const double *p, double dt, int plate, double *ru, double *rv) {
-    int n = w->n, diff = w->par.pressure_gradient == SPH_GRAD_DIFFERENCE;
-    if (!diff) sph_pressure_neg_grad_prepare(w, p, w->sa);
-#pragma omp parallel for schedule(static) num_threads(w->threads)
-    for (int i = 0; i < n; i++) {
-        if (w->kind[i] != SPH_FLUID) {
-            if (plate < 0) src_velocity(w, i, &ru[i], &rv[i]);
-            else sens_velocity(w, i, plate, &ru[i], &rv[i]);
-            continue;
-        }
-        double au, av;
-        if (diff) sph_neg_grad_difference(w, p, i, &au, &av);
-        else sph_neg_grad(w, w->sa, i, &au, &av);
-        ru[i] = (plate < 0 ? w->us[i] : 0.0) + dt * au;
-        rv[i] = (plate < 0 ? w->vs[i] : 0.0) + dt * av;
-    }
-    sph_boundary_sync(w, ru, rv, 1);
-}
-
-
-/* Projection passes (projection_passes = P): the projection leaves u^{n+1} = u* - dt G p / rho
- * with the divergence D u^{n+1} = dt (L - D G) p / rho, L the compact Laplacian of the
- * matrix and D G the wide one of the divergence of the gradient: zero for a smooth p far
- * from boundaries, not next to walls and free surfaces, and in proportion to the pressure
- * itself (a thin film's large pressure). Each pass projects that residual once more with the
- * same matrix (p += L^-1 rho D u / dt), a Jacobi-like iteration towards D u = 0 that
- * converges on the modes with 0 < DG / L < 2. The loaded plates' sensitivities take the same
- * passes (with the plate's unit velocity on its particles), so the plate equations see the
- * final pressure. The passes solve to density_solve_tol: they correct a correction, and a
- * tighter tolerance does not change the result beyond its noise.
- * Why: in a slow thin film that residual divergence is in proportion to dt and to the film's
- * pressure, and the density correction's displacement carries the flux the velocities miss,
- * which no viscous stress resists, so the film closes too easily, more so at a larger dt.
- * One pass raises the flux the particles carry across such a film from 0.88 to 0.95 of
- * V x / h, for about 5 more pressure-solver iterations a step.
- * Off by default: with the symmetric gradient the pass amplifies the modes with DG / L > 2
- * next to the walls, and loaded square squeezes at dx = 1/40-1/60 run away with it. */
-static int projection_passes(sph_world *w, double dt, const int *loaded, int K) {
-    for (int pass = 0; pass < w->par.projection_passes; pass++) {
-        for (int q = -1; q < K; q++) {
-            double *sol = q < 0 ? w->sol : w->solk[q], *full = q < 0 ? w->p : w->psens[q];
-            sph_pressure_scatter(w, sol, full, q < 0 ? w->ps : 0);
-            projected_velocity(w, full, dt, q < 0 ? -1 : loaded[q], w->ru, w->rv);
-            double c = 1.0 / (w->par.rho0 * dt);
-#pragma omp parallel for schedule(static) num_threads(w->threads)
-            for (int r = 0; r < w->nrows; r++) {
-                int i = w->row_of[r];
-                w->b[r] = w->m[i] * sph_field_div(w, w->ru, w->rv, i) * c;
-                w->rq[r] = 0.0;
-            }
-            if (q < 0 && w->pin >= 0) sph_pressure_make_compatible(w, w->m[w->pin] * sph_field_div(w, w->ru, w->rv, w->pin) * c);
-            sph_solve_result res = sph_solver_pcg(&w->solver, &w->A, w->b, w->rq, w->par.density_solve_tol, w->par.max_iter, w->threads);
-            w->st.solver_iterations += res.iterations;
-            if (!res.converged)
-                return sph_world_fail(w,
-                                      "pressure solver (projection pass %d) did not converge at step %ld (t = %g): "
-                                      "relative residual %.3g after %d iterations",
-                                      pass + 1, w->steps, w->t, res.residual, res.iterations);
-#pragma omp parallel for schedule(static) num_threads(w->threads)
-            for (int r = 0; r < w->nrows; r++) sol[r] += w->rq[r];
-        }
-    }
-    return 0;
-}
-
 /* SELF_TERM: the symmetric gradient's term in p_i itself. The projection moves particle i
  * by -dt (G p)_i with (G p)_i = sum_j m_j (p_i / rho_i^2 + p_j / rho_j^2) grad W_ij, which
  * holds p_i g_i / rho_i^2, g_i = sum_j m_j grad W_ij (zero in a full, even support; not in
@@ -440,12 +369,12 @@ int sph_pressure_solve(sph_world *w, double dt) {
 
     if (pin >= 0) sph_pressure_make_compatible(w, w->m[pin] * sph_field_div(w, svx, svy, pin) / (rho0 * dt));
 
-    if (sph_solver_setup_reuse(&w->solver, A, w->par.solver, threads, w->row_of, w->id))
+    if (sph_solver_setup_reuse(&w->solver, A, threads, w->row_of, w->id))
         return sph_world_fail(w, "pressure solver: multigrid setup failed at step %ld (t = %g, %d unknowns): "
                               "out of memory or a coarse operator not positive definite", w->steps, w->t, nrows);
     double tol = w->par.tol;
     int iters = 0;
-    sph_solve_result res = sph_solver_pcg(&w->solver, A, w->b, w->sol, tol, w->par.max_iter, threads);
+    sph_solve_result res = sph_solver_pcg(&w->solver, A, w->b, w->sol, tol, SPH_SOLVE_MAX_ITER, threads);
     iters += res.iterations;
     if (!res.converged)
         return sph_world_fail(w,
@@ -454,7 +383,7 @@ int sph_pressure_solve(sph_world *w, double dt) {
                               w->steps, w->t, dt, res.residual, res.iterations, tol, nrows);
     double resid = res.residual;
     for (int q = 0; q < K; q++) {
-        sph_solve_result rk = sph_solver_pcg(&w->solver, A, w->bk[q], w->solk[q], tol, w->par.max_iter, threads);
+        sph_solve_result rk = sph_solver_pcg(&w->solver, A, w->bk[q], w->solk[q], tol, SPH_SOLVE_MAX_ITER, threads);
         iters += rk.iterations;
         if (!rk.converged)
             return sph_world_fail(w,
@@ -463,8 +392,6 @@ int sph_pressure_solve(sph_world *w, double dt) {
                                   loaded[q] + 1, w->steps, w->t, rk.residual, rk.iterations);
     }
     w->st.solver_iterations = iters;
-    if (projection_passes(w, dt, loaded, K)) return -1;
-    iters = w->st.solver_iterations;
     w->st.solver_residual = resid;
     w->st.solver_iterations_total += iters;
     w->st.unknowns = nrows;

@@ -1,5 +1,5 @@
-/* Sparse linear algebra: a CSR matrix and preconditioned conjugate gradients, the
- * preconditioner Jacobi or the algebraic multigrid cycle of amg.c.
+/* Sparse linear algebra: a CSR matrix and conjugate gradients preconditioned by the
+ * algebraic multigrid cycle of amg.c.
  * The solver has a contract (SPlisHSPlasH style): tolerance and iteration limit in,
  * iterations, residual and convergence out; it never fails silently. */
 #include "internal.h"
@@ -135,11 +135,11 @@ static sph_amg *slot_for(sph_solver *s, const sph_csr *a) {
 #define REUSE_SLACK 1
 #define REUSE_MAX_CHANGE 0.05
 
-static int setup(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_solver kind, int threads,
-                 const int *row_of, const int *id) {
+static int setup(sph_solver *s, const sph_csr *a, const sph_csr *a2, int threads, const int *row_of,
+                 const int *id) {
     s->amg_for = 0;
     s->cur = 0;
-    if (kind != SPH_SOLVER_AMG || a->n == 0) return 0;
+    if (a->n == 0) return 0;
     double t0 = omp_get_wtime();
     sph_amg *g = slot_for(s, a);
     g->wcycle_from = 0; /* the default cycle (sph_solver_vcycle changes it until the next setup) */
@@ -175,21 +175,18 @@ static int setup(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_
     return 0;
 }
 
-int sph_solver_setup(sph_solver *s, const sph_csr *a, sph_linear_solver kind, int threads) {
-    return setup(s, a, 0, kind, threads, 0, 0);
-}
+int sph_solver_setup(sph_solver *s, const sph_csr *a, int threads) { return setup(s, a, 0, threads, 0, 0); }
 
-int sph_solver_setup_reuse(sph_solver *s, const sph_csr *a, sph_linear_solver kind, int threads,
-                           const int *row_of, const int *id) {
-    return setup(s, a, 0, kind, threads, row_of, id);
+int sph_solver_setup_reuse(sph_solver *s, const sph_csr *a, int threads, const int *row_of, const int *id) {
+    return setup(s, a, 0, threads, row_of, id);
 }
 
 /* The viscous u and v systems: one setup for both, the finest smoother's two copies made
  * in one pass (amg.c, sph_amg_setup_pair), a third faster than sph_solver_second after the
  * setup. */
-int sph_solver_setup_pair(sph_solver *s, const sph_csr *a, const sph_csr *a2, sph_linear_solver kind, int threads,
-                          const int *row_of, const int *id) {
-    return setup(s, a, a2, kind, threads, row_of, id);
+int sph_solver_setup_pair(sph_solver *s, const sph_csr *a, const sph_csr *a2, int threads, const int *row_of,
+                          const int *id) {
+    return setup(s, a, a2, threads, row_of, id);
 }
 
 /* The viscous systems take a V-cycle. Their diagonal (rho / dt, scaled by mass) dominates,
@@ -205,7 +202,7 @@ int sph_solver_refresh(sph_solver *s, const sph_csr *a, int threads) {
     double t0 = omp_get_wtime();
     int rc = sph_amg_refresh(s->cur, a, threads);
     s->setup_time += omp_get_wtime() - t0;
-    if (rc) s->amg_for = 0; /* out of memory: Jacobi from here on */
+    if (rc) s->amg_for = 0; /* out of memory: no hierarchy (the solves on a fail) */
     return rc;
 }
 
@@ -234,25 +231,15 @@ static double matvec_dot(const sph_csr *a, const double *x, double *y, int threa
     return s;
 }
 
-/* z = M^-1 r */
-static void precondition(sph_solver *s, const sph_csr *a, const double *r, double *z, int amg, int threads) {
-    int n = a->n;
-    if (amg) {
-        sph_amg_apply(s->cur, a, r, z, threads);
-        return;
-    }
-#pragma omp parallel for schedule(static) num_threads(threads)
-    for (int i = 0; i < n; i++) z[i] = r[i] / a->diag[i];
-}
-
 sph_solve_result sph_solver_pcg(sph_solver *s, const sph_csr *a, const double *b, double *x,
                                 double tol, int max_iter, int threads) {
     sph_solve_result res = {0, 0.0, 1};
     int n = a->n;
     if (n == 0) return res;
+    if (!(s->amg_for == a && s->cur && s->cur->levels > 0 && s->cur->fine_n == n))
+        return (sph_solve_result){0, 1.0, 0}; /* no hierarchy for a */
     double t0 = omp_get_wtime();
     s->solves++;
-    int amg = s->amg_for == a && s->cur && s->cur->levels > 0 && s->cur->fine_n == n;
     double *r = s->r, *z = s->z, *q = s->q, *d = s->d;
     double bnorm = sqrt(dot(b, b, n, threads));
     if (bnorm == 0.0) {
@@ -261,7 +248,7 @@ sph_solve_result sph_solver_pcg(sph_solver *s, const sph_csr *a, const double *b
     }
     sph_csr_matvec(a, x, q, threads);
     for (int i = 0; i < n; i++) r[i] = b[i] - q[i];
-    precondition(s, a, r, z, amg, threads);
+    sph_amg_apply(s->cur, a, r, z, threads);
     for (int i = 0; i < n; i++) d[i] = z[i];
     double rz = dot(r, z, n, threads);
     double rnorm = sqrt(dot(r, r, n, threads));
@@ -270,32 +257,20 @@ sph_solve_result sph_solver_pcg(sph_solver *s, const sph_csr *a, const double *b
         double dq = matvec_dot(a, d, q, threads);
         if (!(dq > 0.0)) break; /* not SPD, or breakdown: reported as not converged */
         double alpha = rz / dq;
-        double rr = 0.0, rz1 = 0.0;
-        if (amg) {
+        double rr = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : rr) num_threads(threads)
-            for (int i = 0; i < n; i++) {
-                x[i] += alpha * d[i];
-                r[i] -= alpha * q[i];
-                rr += r[i] * r[i];
-            }
-            it++;
-            if (!(sqrt(rr) > tol * bnorm)) {
-                rnorm = sqrt(rr);
-                break;
-            }
-            precondition(s, a, r, z, amg, threads);
-            rz1 = dot(r, z, n, threads);
-        } else { /* Jacobi: one fused pass */
-#pragma omp parallel for schedule(static) reduction(+ : rr, rz1) num_threads(threads)
-            for (int i = 0; i < n; i++) {
-                x[i] += alpha * d[i];
-                r[i] -= alpha * q[i];
-                z[i] = r[i] / a->diag[i];
-                rr += r[i] * r[i];
-                rz1 += r[i] * z[i];
-            }
-            it++;
+        for (int i = 0; i < n; i++) {
+            x[i] += alpha * d[i];
+            r[i] -= alpha * q[i];
+            rr += r[i] * r[i];
         }
+        it++;
+        if (!(sqrt(rr) > tol * bnorm)) {
+            rnorm = sqrt(rr);
+            break;
+        }
+        sph_amg_apply(s->cur, a, r, z, threads);
+        double rz1 = dot(r, z, n, threads);
         rnorm = sqrt(rr);
         if (!(rz1 > 0.0)) break; /* preconditioner not positive definite: not converged */
         double beta = rz1 / rz;
@@ -304,7 +279,7 @@ sph_solve_result sph_solver_pcg(sph_solver *s, const sph_csr *a, const double *b
         for (int i = 0; i < n; i++) d[i] = z[i] + beta * d[i];
     }
     res.iterations = it;
-    if (amg && s->first_pending) {
+    if (s->first_pending) {
         s->first_pending = 0;
         s->cur->it_recent = it;
         if (s->cur->it_fresh < 0) s->cur->it_fresh = it;
@@ -324,7 +299,7 @@ int sph_solver_second(sph_solver *s, const sph_csr *a, const sph_csr *a2, int th
 }
 
 /* Two systems side by side (sph_solver_pcg2). The per-system steps are those of
- * sph_solver_pcg's AMG branch, in the same order; the products and the cycle take both
+ * sph_solver_pcg, in the same order; the products and the cycle take both
  * systems in one pass while both iterate, one alone once the other has stopped.
  * The cycle's sweeps are bound by the instructions per nonzero more than by memory: the
  * two systems in one loop share the column loads and the loop, and their two chains of
@@ -367,9 +342,8 @@ void sph_solver_pcg2(sph_solver *s, const sph_csr *a1, const sph_csr *a2, const 
                      double *x1, double *x2, double tol, int max_iter, int threads, sph_solve_result res[2]) {
     int n = a1->n;
     int amg = s->amg_for == a1 && s->cur && s->cur->levels > 0 && s->cur->fine_n == n;
-    if (!amg || a2->n != n || a2->start != a1->start || a2->col != a1->col) { /* one after the other */
-        res[0] = sph_solver_pcg(s, a1, b1, x1, tol, max_iter, threads);
-        res[1] = sph_solver_pcg(s, a2, b2, x2, tol, max_iter, threads);
+    if (!amg || a2->n != n || a2->start != a1->start || a2->col != a1->col) { /* no hierarchy for the pair */
+        res[0] = res[1] = (sph_solve_result){0, 1.0, 0};
         return;
     }
     double t0 = omp_get_wtime();

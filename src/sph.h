@@ -34,10 +34,9 @@ double sph_rheology_eta(const sph_material *mat, double gammadot);
 const char *sph_rheology_check(const sph_material *mat);
 
 typedef enum { SPH_VISC_EXPLICIT = 0, SPH_VISC_IMPLICIT = 1 } sph_viscosity;
-/* Preconditioner of the CG solves (pressure, density correction, implicit viscosity):
- * algebraic multigrid (the default) or Jacobi. */
-typedef enum { SPH_SOLVER_JACOBI = 0, SPH_SOLVER_AMG = 1 } sph_linear_solver;
 
+/* The options a user chooses for a physical or a practical reason (sph.world{...},
+ * docs/api.md); the scheme's numerical constants live in the file that uses them. */
 typedef struct sph_params {
     double dx;             /* initial particle spacing (> 0)                       */
     double h;              /* smoothing length (0: dx); kernel support 3h          */
@@ -46,8 +45,6 @@ typedef struct sph_params {
     sph_viscosity viscosity;
     double shifting;       /* particle-shifting coefficient, 0 = off              */
     double cfl;            /* C_u: dt <= cfl h / max|u|                            */
-    double cvisc;          /* C_eta: dt <= cvisc rho h^2 / max eta (explicit)      */
-    double cforce;         /* C_f: dt <= cforce sqrt(h / max|a|)                   */
     double dt_max;         /* upper bound on dt (0: none)                          */
     double dt_min;         /* a step below this is an error (0: 1e-12 * h)         */
     int periodic[2];       /* periodic in x / y                                    */
@@ -58,80 +55,19 @@ typedef struct sph_params {
     double tol;            /* pressure solver: relative residual; default 1e-6     */
     double visc_tol;       /* implicit viscous solve: relative residual; default
                               1e-6 (docs/performance.md: what looser costs)          */
-    sph_linear_solver solver; /* CG preconditioner: SPH_SOLVER_AMG (default) or JACOBI */
-    int max_iter;          /* pressure solver: iteration limit                     */
     double surface_div;    /* free surface where div r < surface_div (2D: 2 full)  */
-    double density_relax;  /* fraction of the density error removed each step by the
-                              density correction (density.c); 1 by default            */
-    int density_passes;    /* density corrections per step at most, while the
-                              error exceeds density_tol; default 2                  */
     double density_tol;    /* dt shrinks while the max density error exceeds this
                               (0: no control); default 0.005                        */
-    double density_limit;  /* more passes (up to SPH_MAX_DENSITY_PASSES in all) while
-                              the error still exceeds this after density_passes
-                              (0: none); default 0.008                              */
-    double density_diffusion; /* kappa: each step rho_i += kappa h^2 (compact Laplacian
-                              of rho)_i over interior fluid, a filter of the continuity
-                              density's particle-scale modes (thin films); default 0 */
-    double density_solve_tol; /* relative tolerance of the density-correction solves;
-                              default 1e-3 (the density follows the displacement made,
-                              so phi need not be exact)                               */
-    double pressure_predictor; /* beta in [0, 1]: the implicit viscous step carries
-                              -beta grad p~ (the last step's pressure, kernel-averaged)
-                              and the projection takes it back, so the no-slip walls see
-                              the pressure-driven shear inside the step (pressure.c);
-                              default 1; ignored with explicit viscosity             */
     int density_gmres;     /* 1: the density correction minimises the continuity
                               density's error over the Krylov space of its passes
                               (GMRES; density.c); 0 (default): successive passes,
                               each with a least-squares step length                 */
-    int wall_curved;       /* 1: the no-slip wall velocity extrapolates the fluid's with the
-                              profile's curvature from the momentum balance (viscous.c;
-                              implicit viscosity with the pressure predictor); 0 (default):
-                              the linear (Morris) extrapolation                       */
     int pressure_gradient; /* the projection's gradient: SPH_GRAD_SYMMETRIC (default,
                               momentum-conserving) or SPH_GRAD_DIFFERENCE (first-order
                               consistent: renormalised sum V_j (p_j - p_i) grad W)    */
-    int density_gradient;  /* the density correction's displacement -grad phi / rho:
-                              SPH_GRAD_SYMMETRIC (-sum_j m_j (phi_i / rho_i^2 +
-                              phi_j / rho_j^2) grad W_ij, whose phi_i sum_j grad W_ij
-                              term, where the support is cut or the particles are
-                              disordered, grows with phi itself),
-                              SPH_GRAD_DIFFERENCE (renormalised, blind to a level of
-                              phi: large runs; thin films less accurate) or
-                              SPH_GRAD_AUTO (default: the symmetric form, until a
-                              step's first pass falls short, step length under 1; that
-                              pass takes the other form's direction where it removes
-                              more of the error, and the winner is where the next
-                              first pass starts; later passes and the GMRES
-                              correction symmetric; density.c)                       */
-    int density_descent;   /* in [0, 100]: when the passes leave the error above
-                              density_limit, up to this many steepest-descent moves of
-                              the particles down the density error's gradient
-                              (density.c); default 20, 0: none                       */
-    int projection_passes; /* in [0, 10]: extra projections of the residual divergence the
-                              compact Laplacian leaves (D G != L), each one more solve of
-                              the pressure system per step (pressure.c); default 0    */
-    int density_wait;      /* in [0, 1000]: after a density pass (not the first) of step
-                              length 0, this many steps take one pass (doubling while
-                              it recurs, up to 16 x; the descent follows above density_limit;
-                              density.c); 0 (default): none (a pass of step length 0
-                              still ends the step's passes: the next would repeat it)  */
-    double density_probe;  /* in [0, 1): after a density pass (not the first) of step
-                              length 0, the next such pass is first tried on a solve to
-                              this relative residual; if its direction cannot lower the
-                              error the pass ends there, else it is solved in full, as
-                              without the probe (density.c); default 0.1, 0: off      */
-    int dt_eased;          /* 1: dt's growth eases from 25 % a step at half density_tol to
-                              none from 95 % of it (timestep.c: no saw-tooth, fewer
-                              density passes; faster at 10^5 particles, more steps in
-                              small runs); 0 (default): 25 % a step while under it   */
 } sph_params;
 
-enum { SPH_GRAD_SYMMETRIC = 0, SPH_GRAD_DIFFERENCE = 1, SPH_GRAD_AUTO = 2 /* density_gradient only */ };
-#define SPH_MAX_GMRES 8
-
-#define SPH_MAX_DENSITY_PASSES 10
+enum { SPH_GRAD_SYMMETRIC = 0, SPH_GRAD_DIFFERENCE = 1 };
 
 void sph_params_default(sph_params *p);
 
@@ -246,16 +182,13 @@ typedef struct sph_stats {
     double peak_density_error; /* the largest max_density_error of any step so far */
     double density_alpha;     /* smallest step length of the last step's density passes (1: full) */
     int density_passes;       /* density-correction passes in the last step */
-    long density_fallbacks;   /* steps whose passes stalled above density_limit and
-                                 took a GMRES correction after them (density.c) */
-    long density_descents;    /* steepest-descent moves so far (density_descent)  */
-    long density_skipped;     /* steps so far that took one density pass where the error
-                                 asked for more, because a later pass had just moved
-                                 nothing (step length 0; density.c)                  */
+    long density_fallbacks;   /* steps whose passes stalled above the density limit (0.8 %)
+                                 and took a GMRES correction after them (density.c) */
+    long density_descents;    /* steepest-descent moves so far (density.c)   */
     long density_switches;    /* first density passes so far that moved along the
-                                 difference form's direction (SPH_GRAD_AUTO)         */
+                                 difference form's direction (density.c)             */
     long density_probes;      /* later density passes tried first on a loose solve
-                                 (density_probe) so far                              */
+                                 (after one that moved nothing; density.c) so far    */
     long density_probes_ended; /* of those, the ones whose direction could not lower
                                  the error: the pass ended without its full solve    */
     int floating_walls;       /* active walls the fluid does not reach, left out of

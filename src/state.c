@@ -18,9 +18,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define STATE_MAGIC "SPHSTAT6" /* 2: the density fallback's wait, 3: the later passes' wait, 4: the
+#define STATE_MAGIC "SPHSTAT7" /* 2: the density fallback's wait, 3: the later passes' wait, 4: the
                                   * last later pass stalled, 5: the last first pass's form (density.c),
-                                  * 6: the solves' first guesses and multigrid hierarchies */
+                                  * 6: the solves' first guesses and multigrid hierarchies, 7: the
+                                  * numerical options and the later passes' wait gone */
 
 typedef struct {
     char magic[8];
@@ -41,7 +42,7 @@ static void header(state_header *h) {
 #define STATE_DOUBLES(w) {w->x, w->y, w->u, w->v, w->ax, w->ay, w->p, w->rho, w->m, w->phi, w->eta, w->gd}
 #define STATE_INTS(w) {w->kind, w->mat, w->id}
 
-/* The solves' state between steps (SPHSTAT6): whether the plates' faces are set
+/* The solves' state between steps (since SPHSTAT6): whether the plates' faces are set
  * (sph_plate_prepare), the three first guesses (their changes per particle, as permuted
  * with the particles), the reuse count and the two hierarchies with the matrix each was
  * built for (0 none, 1 the pressure matrix, 2 the viscous one). */
@@ -84,8 +85,7 @@ int sph_world_save(sph_world *w, const char *file) {
     double dbl[4] = {w->t, w->dt, w->dt_prev, w->wall_time};
     ok = ok && fwrite(ints, sizeof ints, 1, f) == 1 && fwrite(dbl, sizeof dbl, 1, f) == 1;
     ok = ok && fwrite(&w->steps, sizeof w->steps, 1, f) == 1;
-    long wait[6] = {w->fallback_after, w->fallback_wait, w->passes_after, w->passes_wait, w->later_stalled,
-                    w->first_difference};
+    long wait[4] = {w->fallback_after, w->fallback_wait, w->later_stalled, w->first_difference};
     ok = ok && fwrite(wait, sizeof wait, 1, f) == 1;
     ok = ok && fwrite(&w->st, sizeof w->st, 1, f) == 1;
     ok = ok && fwrite(w->phase_time, sizeof w->phase_time, 1, f) == 1;
@@ -269,9 +269,8 @@ sph_world *sph_world_load(const char *file, char *err, size_t errlen) {
     int got = fread(&h, sizeof h, 1, r.f) == 1;
     if (got && memcmp(h.magic, "SPHSTAT", 7) == 0 && memcmp(h.magic, want.magic, 8) != 0) {
         snprintf(err, errlen,
-                 "'%s' is a state of another version of sph (%.8s; this build reads %.8s): load it with the "
-                 "build that saved it",
-                 file, h.magic, want.magic);
+                 "'%s' was written by %s sph (%.8s; this build reads %.8s): load it with the build that saved it",
+                 file, h.magic[7] < want.magic[7] ? "an older" : "a newer", h.magic, want.magic);
         fclose(r.f);
         return 0;
     }
@@ -334,19 +333,15 @@ sph_world *sph_world_load(const char *file, char *err, size_t errlen) {
     }
     if (rd(&r, &w->steps, sizeof w->steps, 1, "the step count") && w->steps < 0)
         damaged(&r, "step count %ld is negative", w->steps);
-    long wait[6];
+    long wait[4];
     if (rd(&r, wait, sizeof wait, 1, "the density correction's waits") &&
-        !(wait[1] >= 0 && wait[1] <= 1L << 20 && wait[3] >= 0 && wait[3] <= 1L << 20 && (wait[4] == 0 || wait[4] == 1) &&
-          (wait[5] == 0 || wait[5] == 1)))
-        damaged(&r, "density correction waits {%ld, %ld, %ld, %ld, %ld, %ld} out of range", wait[0], wait[1], wait[2],
-                wait[3], wait[4], wait[5]);
+        !(wait[1] >= 0 && wait[1] <= 1L << 20 && (wait[2] == 0 || wait[2] == 1) && (wait[3] == 0 || wait[3] == 1)))
+        damaged(&r, "density correction waits {%ld, %ld, %ld, %ld} out of range", wait[0], wait[1], wait[2], wait[3]);
     if (!r.bad) {
         w->fallback_after = wait[0];
         w->fallback_wait = (int)wait[1];
-        w->passes_after = wait[2];
-        w->passes_wait = (int)wait[3];
-        w->later_stalled = (int)wait[4];
-        w->first_difference = (int)wait[5];
+        w->later_stalled = (int)wait[2];
+        w->first_difference = (int)wait[3];
     }
     rd(&r, &w->st, sizeof w->st, 1, "the statistics");
     rd(&r, w->phase_time, sizeof w->phase_time, 1, "the phase times");

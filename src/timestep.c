@@ -9,6 +9,12 @@
 #include <math.h>
 #include <stdio.h>
 
+/* C_f and C_eta: the force and explicit-viscosity limits of Morris, Fox & Zhu (1997). */
+#define C_FORCE 0.25
+#define C_VISC 0.125
+/* dt grows at most 25 % a step: the density error a longer step makes shows steps late. */
+#define DT_GROWTH 1.25
+
 double sph_timestep_compute(sph_world *w) {
     const sph_params *P = &w->par;
     double h = w->h, umax = 0.0, amax = 0.0, etamax = 0.0, rhomin = INFINITY, nus = 0.0;
@@ -43,9 +49,9 @@ double sph_timestep_compute(sph_world *w) {
     if (g > amax) amax = g;
     double dt = INFINITY;
     if (umax > 0) dt = fmin(dt, P->cfl * h / umax);
-    if (amax > 0) dt = fmin(dt, P->cforce * sqrt(h / amax));
+    if (amax > 0) dt = fmin(dt, C_FORCE * sqrt(h / amax));
     if (P->viscosity == SPH_VISC_EXPLICIT && etamax > 0 && isfinite(rhomin))
-        dt = fmin(dt, P->cvisc * rhomin * h * h / etamax);
+        dt = fmin(dt, C_VISC * rhomin * h * h / etamax);
     /* The free surface's stress is explicit (its pressure is the viscous solution's
      * n . tau . n): a particle-scale mode of the surface row grows beyond dt ~ 3 rho h^2 /
      * eta (SPH_SURFACE_CS, internal.h). */
@@ -63,25 +69,7 @@ double sph_timestep_compute(sph_world *w) {
     } else if (P->density_tol > 0 && w->st.max_density_error > P->density_tol) {
         dt = fmin(dt, fmax(floor, w->dt_prev * fmax(0.8, P->density_tol / w->st.max_density_error)));
     }
-    /* dt_growth = "eased" (P->dt_eased): up to 25 % more a step while the density error is
-     * under half of density_tol, then less and less, none from 95 % of it up. With the
-     * default, 25 % a step up to the tolerance, the error (which accumulates, so answers dt
-     * a few steps late) overshoots it and dt saw-tooths, with the second density pass nearly
-     * every step and the solves' first guesses off; eased, a run of 10^5 particles takes
-     * about a fifth less time. Not the default: small runs take up to twice the steps, where
-     * a step with the second pass costs little more, and the validation errors move
-     * (docs/performance.md). */
-    if (w->dt_prev > 0) {
-        double grow = 1.25;
-        if (P->dt_eased && P->density_tol > 0) {
-            double r = w->st.max_density_error / P->density_tol;
-            if (r >= 0.95)
-                grow = 1.0;
-            else if (r > 0.5)
-                grow = 1.0 + 0.25 * (0.95 - r) / 0.45;
-        }
-        dt = fmin(dt, grow * w->dt_prev);
-    }
+    if (w->dt_prev > 0) dt = fmin(dt, DT_GROWTH * w->dt_prev);
     if (!isfinite(dt)) dt = P->cfl * h; /* nothing moves: a step as if |u| = 1 */
     return dt;
 }

@@ -169,40 +169,6 @@ static inline double plate_pull(const sph_world *w, int i, int j, double cw, dou
     return -w->m[i] * cw * (pl->axis == 0 ? (ui - wx) * w->gsx[j] : (vi - wy) * w->gsy[j]);
 }
 
-/* wall = "curved": the Morris wall velocity u_B = u_w - (d_B / d_A)(u_A - u_w) is the linear
- * extrapolation of fluid particle A's through the wall face; a profile u = u_w + tau n +
- * kappa n^2 / 2 continues to u_w - tau d_B + kappa d_B^2 / 2 at B, kappa d_B (d_A + d_B) / 2
- * above the linear value, so the wall drags too little wherever the profile is curved (a
- * Poiseuille channel of 7 rows carries 5.6 % too much flux, an effective slip of about
- * 0.065 dx). The curvature is taken from the momentum balance at A (wall_curvature),
- * eta kappa = rho (a - a_p - g) (a the last step's acceleration, a_p = -grad p~ / rho the
- * pressure predictor's), and the wall term gains -c_base kappa d_B (d_A + d_B) / 2
- * (wall_coeff_curved returns c = beta c_base and that factor, f = c_base d_B (d_A + d_B) / 2),
- * explicit in the implicit step, for the velocity component tangent to the face only, where
- * A lies over the plate's face (not at its ends, where a moving periodic plate's image ends
- * would take the normal component and push a particle through the plate), and not at the
- * first step (no acceleration yet): the pair's acceleration is c (u_A - u_w) - f kappa.
- * That brings the 7-row channel's excess flux to 1.7 % (tests/lua/test_walls.lua). Not the
- * default: the balance is the Newtonian one (a generalized Newtonian fluid's also has
- * grad eta . grad u, and the Bingham Poiseuille plug comes out 3 % low at dx = 1/40). */
-static inline double wall_coeff_curved(const sph_world *w, int i, int j, int k, double *wx, double *wy,
-                                       double *f, int *horizontal) {
-    double da, db, fa = 0.5 * w->dx; /* the face distances once: beta as sph_plate_noslip */
-    *horizontal = sph_plate_wall_distances(w, i, j, &da, &db);
-    sph_plate_wall_velocity(w, j, wx, wy);
-    double cbase = w->vol[j] * 2.0 * w->eta[i] * w->nb_f[k] / w->rho[i];
-    *f = 0.5 * db * (da + db) * cbase;
-    return (1.0 + db / (da > fa ? da : fa)) * cbase;
-}
-
-/* kappa of fluid particle i (see wall_coeff_curved); ax_p, ay_p the predictor's -grad p~ / rho */
-static inline void wall_curvature(const sph_world *w, int i, const double *axp, const double *ayp,
-                                  double *kx, double *ky) {
-    double r = w->rho[i] / w->eta[i];
-    *kx = r * (w->ax[i] - axp[i] - w->par.gravity[0]);
-    *ky = r * (w->ay[i] - ayp[i] - w->par.gravity[1]);
-}
-
 /* Whole-sample viscous force of each plate from the simulated part's sums. */
 static void set_plate_viscous_forces(sph_world *w, const double *f) {
     for (int k = 0; k < w->nplates; k++) w->plates[k].force_visc = f[k] * (w->plates[k].doubled ? 2.0 : 1.0);
@@ -261,7 +227,7 @@ void sph_viscous_explicit(sph_world *w, double dt) {
  * the u and v systems differ in those entries), a particle's own mirror image as a diagonal
  * term. F_ij < 0, so the matrix is an M-matrix; scaling row i by m_i makes it symmetric
  * (m_i c_ij is symmetric in i, j), and CG solves it from visc_guess's first guess,
- * preconditioned by the multigrid cycle (solver = amg, both components at once) or Jacobi.
+ * preconditioned by the multigrid cycle, both components at once.
  * The time step then does not depend on the viscosity but for the explicit free-surface
  * stress (timestep.c). */
 static int reserve_visc(sph_world *w, int nrows) {
@@ -275,40 +241,23 @@ static int reserve_visc(sph_world *w, int nrows) {
     return 0;
 }
 
-/* Values and right-hand side of component comp (0: u, 1: v); the structure is in w->V. */
-/* Both components have the same coefficients; they differ only by the image signs of
- * ghosts (gsx, gsy), the wall velocity and the gravity. Component 0 computes every
- * coefficient once, keeping component 1's values, diagonal and right-hand side (vval,
- * vdiag, vrhs) for its turn, which is then a copy. */
-static void visc_assemble(sph_world *w, double dt, int comp) {
+/* Values and right-hand sides of both components; the structure is in w->V. Both have the
+ * same coefficients; they differ only by the image signs of ghosts (gsx, gsy), the wall
+ * velocity and the gravity: u's values, diagonal and right-hand side go to w->V and w->vb,
+ * v's to vval, vdiag and vrhs. */
+static void visc_assemble(sph_world *w, double dt) {
     sph_csr *A = &w->V;
     int nrows = A->n;
-    if (comp == 1) {
-        int nnz = A->start[nrows];
-#pragma omp parallel for schedule(static) num_threads(w->threads)
-        for (int e = 0; e < nnz; e++) A->val[e] = w->vval[e];
-#pragma omp parallel for schedule(static) num_threads(w->threads)
-        for (int r = 0; r < nrows; r++) {
-            A->diag[r] = w->vdiag[r];
-            w->vb[r] = w->vrhs[r];
-            w->vsol[r] = w->v[w->vrow_of[r]];
-        }
-        sph_lap(w, SPH_PHASE_VISC_ASSEMBLY);
-        return;
-    }
-    /* the pressure predictor (pressure.c): -beta grad p~ / rho as a body force */
-    double gx = w->par.gravity[0], gy = w->par.gravity[1], beta = w->par.pressure_predictor;
-    if (beta > 0) sph_pressure_predictor(w, w->xs, w->ys);
-    int curved = w->par.wall_curved && beta > 0 && w->steps > 0; /* a: the last step's */
+    /* the pressure predictor (pressure.c): -grad p~ / rho as a body force */
+    double gx = w->par.gravity[0], gy = w->par.gravity[1];
+    sph_pressure_predictor(w, w->xs, w->ys);
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int r = 0; r < nrows; r++) {
         int i = w->vrow_of[r], e = A->start[r] + 1;
         double mi = w->m[i];
         double du = 1.0, dv = 1.0, ru = w->u[i] + dt * gx, rv = w->v[i] + dt * gy;
-        if (beta > 0) {
-            ru += beta * dt * w->xs[i];
-            rv += beta * dt * w->ys[i];
-        }
+        ru += dt * w->xs[i];
+        rv += dt * w->ys[i];
         double fx, fy; /* the transpose part of div tau (explicit) */
         transpose_accel(w, i, &fx, &fy);
         ru += dt * fx;
@@ -331,20 +280,13 @@ static void visc_assemble(sph_world *w, double dt, int comp) {
                 e++;
             }
         }
-        double kx = 0.0, ky = 0.0;
-        if (curved) wall_curvature(w, i, w->xs, w->ys, &kx, &ky);
         for (int k = km; k < k1; k++) { /* walls */
             int j = w->nb_j[k];
-            double wx, wy, c, f = 0.0;
-            int hz = 0;
-            if (curved) c = dt * wall_coeff_curved(w, i, j, k, &wx, &wy, &f, &hz);
-            else c = dt * wall_coeff(w, i, j, k, &wx, &wy);
+            double wx, wy, c = dt * wall_coeff(w, i, j, k, &wx, &wy);
             du -= c;
             dv -= c;
             ru -= c * wx;
             rv -= c * wy;
-            if (hz == 1) ru -= dt * f * kx; /* the tangential component only */
-            else if (hz == 2) rv -= dt * f * ky;
         }
         int d = A->start[r];
         A->col[d] = r;
@@ -417,73 +359,50 @@ int sph_viscous_implicit(sph_world *w, double dt) {
     if (sph_csr_reserve(A, nrows, A->start[nrows]) || sph_solver_reserve(&w->solver, nrows))
         return sph_world_fail(w, "out of memory (viscous matrix)");
 
+    /* Both components at once: u's system in A, v's in a view of A's structure with v's
+     * values (visc_assemble keeps them in vval, vdiag, vrhs), its solution in the solver's
+     * x2. One multigrid setup for both: their matrices differ only in the entries of mirror
+     * images, and the hierarchy stays a valid preconditioner; the finest level's smoother
+     * takes each component's own values (with u's, v's solve takes about a third more
+     * iterations: the images' entries change sign). sph_solver_pcg2 reads the structure
+     * once for both in CG's product and the cycle, each component's iterates as when solved
+     * alone (the same figures bit for bit). The hierarchy is reused across steps by the
+     * pressure solve's rules (solver.c, "Reuse across steps"), the finest smoother rebuilt
+     * from both components' values each step. */
     int iters = 0;
     double resid = 0.0;
-    if (w->par.solver == SPH_SOLVER_AMG) {
-        /* both components at once: u's system in A, v's in a view of A's structure with
-         * v's values (visc_assemble keeps them in vval, vdiag, vrhs), its solution in the
-         * solver's x2. One multigrid setup for both: their matrices differ only in the
-         * entries of mirror images, and the hierarchy stays a valid preconditioner; the
-         * finest level's smoother takes each component's own values (with u's, v's solve
-         * takes about a third more iterations: the images' entries change sign).
-         * sph_solver_pcg2 reads the structure once for both in CG's product and the cycle,
-         * each component's iterates as when solved alone (the same figures bit for bit).
-         * The hierarchy is reused across steps by the pressure solve's rules (solver.c,
-         * "Reuse across steps"), the finest smoother rebuilt from both components' values
-         * each step. */
-        visc_assemble(w, dt, 0);
-        sph_csr V2 = *A;
-        V2.val = w->vval;
-        V2.diag = w->vdiag;
-        double *x2 = w->solver.x2;
-        for (int r = 0; r < nrows; r++) x2[r] = w->v[w->vrow_of[r]];
-        visc_guess(w, dt, 0, w->vsol);
-        visc_guess(w, dt, 1, x2);
-        if (sph_solver_setup_pair(&w->solver, A, &V2, w->par.solver, w->threads, w->vrow_of, w->id))
-            return sph_world_fail(w, "viscous solver: multigrid setup failed at step %ld (t = %g, %d unknowns): "
-                                  "out of memory or a coarse operator not positive definite", w->steps, w->t, nrows);
-        sph_solver_vcycle(&w->solver, A); /* a V-cycle for these systems (solver.c) */
-        sph_solve_result res[2];
-        sph_solver_pcg2(&w->solver, A, &V2, w->vb, w->vrhs, w->vsol, x2, w->par.visc_tol, w->par.max_iter, w->threads,
-                        res);
-        for (int comp = 0; comp < 2; comp++) {
-            if (!res[comp].converged)
-                return sph_world_fail(w,
-                                      "viscous solver (%s) did not converge at step %ld (t = %g, dt = %g): "
-                                      "relative residual %.3g after %d iterations (tolerance %g, %d unknowns)",
-                                      comp ? "v" : "u", w->steps, w->t, dt, res[comp].residual,
-                                      res[comp].iterations, w->par.visc_tol, nrows);
-            iters += res[comp].iterations;
-            if (res[comp].residual > resid) resid = res[comp].residual;
-        }
-        for (int r = 0; r < nrows; r++) {
-            w->us[w->vrow_of[r]] = w->vsol[r];
-            w->vs[w->vrow_of[r]] = x2[r];
-        }
-        visc_keep(w, dt, 0, w->vsol);
-        visc_keep(w, dt, 1, x2);
-        sph_lap(w, SPH_PHASE_VISC_SOLVE);
-    }
-    for (int comp = 0; comp < 2 && w->par.solver != SPH_SOLVER_AMG; comp++) { /* Jacobi: in turn */
-        visc_assemble(w, dt, comp);
-        visc_guess(w, dt, comp, w->vsol);
-        if (comp == 0 && sph_solver_setup(&w->solver, A, w->par.solver, w->threads))
-            return sph_world_fail(w, "viscous solver: setup failed at step %ld (%d unknowns)", w->steps, nrows);
-        sph_solve_result res =
-            sph_solver_pcg(&w->solver, A, w->vb, w->vsol, w->par.visc_tol, w->par.max_iter, w->threads);
-        if (!res.converged)
+    visc_assemble(w, dt);
+    sph_csr V2 = *A;
+    V2.val = w->vval;
+    V2.diag = w->vdiag;
+    double *x2 = w->solver.x2;
+    for (int r = 0; r < nrows; r++) x2[r] = w->v[w->vrow_of[r]];
+    visc_guess(w, dt, 0, w->vsol);
+    visc_guess(w, dt, 1, x2);
+    if (sph_solver_setup_pair(&w->solver, A, &V2, w->threads, w->vrow_of, w->id))
+        return sph_world_fail(w, "viscous solver: multigrid setup failed at step %ld (t = %g, %d unknowns): "
+                              "out of memory or a coarse operator not positive definite", w->steps, w->t, nrows);
+    sph_solver_vcycle(&w->solver, A); /* a V-cycle for these systems (solver.c) */
+    sph_solve_result res[2];
+    sph_solver_pcg2(&w->solver, A, &V2, w->vb, w->vrhs, w->vsol, x2, w->par.visc_tol, SPH_SOLVE_MAX_ITER, w->threads,
+                    res);
+    for (int comp = 0; comp < 2; comp++) {
+        if (!res[comp].converged)
             return sph_world_fail(w,
                                   "viscous solver (%s) did not converge at step %ld (t = %g, dt = %g): "
                                   "relative residual %.3g after %d iterations (tolerance %g, %d unknowns)",
-                                  comp ? "v" : "u", w->steps, w->t, dt, res.residual, res.iterations,
+                                  comp ? "v" : "u", w->steps, w->t, dt, res[comp].residual, res[comp].iterations,
                                   w->par.visc_tol, nrows);
-        iters += res.iterations;
-        if (res.residual > resid) resid = res.residual;
-        double *dst = comp ? w->vs : w->us;
-        for (int r = 0; r < nrows; r++) dst[w->vrow_of[r]] = w->vsol[r];
-        visc_keep(w, dt, comp, w->vsol);
-        sph_lap(w, SPH_PHASE_VISC_SOLVE);
+        iters += res[comp].iterations;
+        if (res[comp].residual > resid) resid = res[comp].residual;
     }
+    for (int r = 0; r < nrows; r++) {
+        w->us[w->vrow_of[r]] = w->vsol[r];
+        w->vs[w->vrow_of[r]] = x2[r];
+    }
+    visc_keep(w, dt, 0, w->vsol);
+    visc_keep(w, dt, 1, x2);
+    sph_lap(w, SPH_PHASE_VISC_SOLVE);
     w->st.visc_iterations = iters;
     w->st.visc_residual = resid;
 
@@ -492,31 +411,21 @@ int sph_viscous_implicit(sph_world *w, double dt) {
     /* walls keep their plate's velocity; the viscous force on each plate from u* */
     /* then the pressure predictor's term taken back: the projection applies the whole
      * -grad p^{n+1} / rho (the plates' viscous force is that of u* with it) */
-    double fplate[SPH_MAX_PLATES] = {0}, bdt = w->par.pressure_predictor * dt;
-    int curved = w->par.wall_curved && bdt > 0 && w->steps > 0;
+    double fplate[SPH_MAX_PLATES] = {0};
 #pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : fplate[:SPH_MAX_PLATES])
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) {
             sph_plate_wall_velocity(w, i, &w->us[i], &w->vs[i]);
             continue;
         }
-        double kx = 0.0, ky = 0.0;
-        if (curved) wall_curvature(w, i, w->xs, w->ys, &kx, &ky);
         for (int k = w->nb_mid[i]; k < w->nb_start[i + 1]; k++) { /* walls */
             int j = w->nb_j[k];
             if (w->plates[w->kind[j]].axis < 0) continue;
-            int hz = 0;
-            double wx, wy, cw, f = 0.0;
-            if (curved) cw = wall_coeff_curved(w, i, j, k, &wx, &wy, &f, &hz);
-            else cw = wall_coeff(w, i, j, k, &wx, &wy);
-            double g = cw != 0.0 ? f / cw : 0.0; /* c (u - g kappa - w) = c (u - w) - f kappa */
-            fplate[w->kind[j]] += plate_pull(w, i, j, cw, w->us[i] - (hz == 1 ? g * kx : 0.0),
-                                             w->vs[i] - (hz == 2 ? g * ky : 0.0), wx, wy);
+            double wx, wy, cw = wall_coeff(w, i, j, k, &wx, &wy);
+            fplate[w->kind[j]] += plate_pull(w, i, j, cw, w->us[i], w->vs[i], wx, wy);
         }
-        if (bdt > 0) {
-            w->us[i] -= bdt * w->xs[i];
-            w->vs[i] -= bdt * w->ys[i];
-        }
+        w->us[i] -= dt * w->xs[i];
+        w->vs[i] -= dt * w->ys[i];
     }
     set_plate_viscous_forces(w, fplate);
     sph_boundary_sync(w, w->us, w->vs, 1);

@@ -19,28 +19,12 @@ void sph_params_default(sph_params *p) {
     p->rho0 = 1.0;
     p->viscosity = SPH_VISC_IMPLICIT;
     p->cfl = 0.25;
-    p->cvisc = 0.125;
-    p->cforce = 0.25;
     p->tol = 1e-6;
     p->visc_tol = 1e-6;
-    p->solver = SPH_SOLVER_AMG;
-    p->max_iter = 5000;
     p->surface_div = 1.5;
     p->density_tol = 0.005;
-    p->density_relax = 1.0;
-    p->density_passes = 2;
-    p->density_limit = 0.008;
-    p->density_descent = 20;
-    p->density_diffusion = 0.0;
-    p->density_solve_tol = 1e-3;
-    p->density_probe = 0.1;
-    p->pressure_predictor = 1.0;
     p->density_gmres = 0;
-    p->wall_curved = 0;
     p->pressure_gradient = SPH_GRAD_SYMMETRIC;
-    p->density_gradient = SPH_GRAD_AUTO;
-    p->projection_passes = 0;
-    p->dt_eased = 0;
 }
 
 int sph_world_fail(sph_world *w, const char *fmt, ...) {
@@ -59,52 +43,26 @@ static const char *check_params(const sph_params *p) {
         "dx must be a positive number", "h must be >= 0 (0: dx)", "rho must be a positive number",
         "cfl must be in (0, 1]", "periodic range must have lo < hi",
         "an axis cannot be both periodic and a symmetry plane", "tol must be in (0, 1)",
-        "max_iter must be positive", "gravity must be finite", "density_relax must be in [0, 1]",
-        "shifting must be >= 0", "density_tol must be in [0, 1)", "density_passes must be in [1, 10]",
-        "solver must be SPH_SOLVER_AMG or SPH_SOLVER_JACOBI", "density_limit must be in [0, 1) (0: none)", "density_diffusion must be in [0, 0.25]", "density_solve_tol must be in (0, 1)",
-        "pressure_predictor must be in [0, 1]", "density_gmres must be 0 or 1",
-        "pressure_gradient must be SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE", "wall_curved must be 0 or 1",
-        "projection_passes must be in [0, 10]", "density_descent must be in [0, 100]", "visc_tol must be in (0, 1)",
-        "dt_eased must be 0 or 1", "density_wait must be in [0, 1000]", "density_probe must be in [0, 1)",
-        "density_gradient must be SPH_GRAD_AUTO, SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE",
-        "threads must be 1..256 (0: all cores)", "cvisc must be a positive number",
-        "cforce must be a positive number"};
+        "gravity must be finite", "shifting must be >= 0", "density_tol must be in [0, 1)",
+        "density_gmres must be 0 or 1", "pressure_gradient must be SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE",
+        "visc_tol must be in (0, 1)", "threads must be 1..256 (0: all cores)"};
     _Static_assert(SPH_MAX_THREADS == 256, "the threads message names the bound");
     if (!(p->dx > 0 && isfinite(p->dx))) return bad[0];
     if (!(p->h >= 0 && isfinite(p->h))) return bad[1];
     if (!(p->rho0 > 0 && isfinite(p->rho0))) return bad[2];
     if (!(p->cfl > 0 && p->cfl <= 1)) return bad[3];
-    if (!(p->cvisc > 0 && isfinite(p->cvisc))) return bad[29];
-    if (!(p->cforce > 0 && isfinite(p->cforce))) return bad[30];
     for (int a = 0; a < 2; a++) {
         if (p->periodic[a] && !(p->period_lo[a] < p->period_hi[a])) return bad[4];
         if (p->periodic[a] && p->symmetry[a]) return bad[5];
     }
     if (!(p->tol > 0 && p->tol < 1)) return bad[6];
-    if (p->max_iter <= 0) return bad[7];
-    if (!isfinite(p->gravity[0]) || !isfinite(p->gravity[1])) return bad[8];
-    if (!(p->density_relax >= 0 && p->density_relax <= 1)) return bad[9];
-    if (!(p->shifting >= 0)) return bad[10];
-    if (!(p->density_tol >= 0 && p->density_tol < 1)) return bad[11];
-    if (!(p->density_passes >= 1 && p->density_passes <= 10)) return bad[12];
-    if (p->solver != SPH_SOLVER_AMG && p->solver != SPH_SOLVER_JACOBI) return bad[13];
-    if (!(p->density_limit >= 0 && p->density_limit < 1)) return bad[14];
-    if (!(p->density_diffusion >= 0 && p->density_diffusion <= 0.25)) return bad[15];
-    if (!(p->density_solve_tol > 0 && p->density_solve_tol < 1)) return bad[16];
-    if (!(p->pressure_predictor >= 0 && p->pressure_predictor <= 1)) return bad[17];
-    if (p->density_gmres != 0 && p->density_gmres != 1) return bad[18];
-    if (p->pressure_gradient != SPH_GRAD_SYMMETRIC && p->pressure_gradient != SPH_GRAD_DIFFERENCE) return bad[19];
-    if (p->wall_curved != 0 && p->wall_curved != 1) return bad[20];
-    if (!(p->projection_passes >= 0 && p->projection_passes <= 10)) return bad[21];
-    if (!(p->density_descent >= 0 && p->density_descent <= 100)) return bad[22];
-    if (!(p->visc_tol > 0 && p->visc_tol < 1)) return bad[23];
-    if (p->dt_eased != 0 && p->dt_eased != 1) return bad[24];
-    if (!(p->density_wait >= 0 && p->density_wait <= 1000)) return bad[25];
-    if (!(p->density_probe >= 0 && p->density_probe < 1)) return bad[26];
-    if (p->density_gradient != SPH_GRAD_SYMMETRIC && p->density_gradient != SPH_GRAD_DIFFERENCE &&
-        p->density_gradient != SPH_GRAD_AUTO)
-        return bad[27];
-    if (!(p->threads >= 0 && p->threads <= SPH_MAX_THREADS)) return bad[28];
+    if (!isfinite(p->gravity[0]) || !isfinite(p->gravity[1])) return bad[7];
+    if (!(p->shifting >= 0)) return bad[8];
+    if (!(p->density_tol >= 0 && p->density_tol < 1)) return bad[9];
+    if (p->density_gmres != 0 && p->density_gmres != 1) return bad[10];
+    if (p->pressure_gradient != SPH_GRAD_SYMMETRIC && p->pressure_gradient != SPH_GRAD_DIFFERENCE) return bad[11];
+    if (!(p->visc_tol > 0 && p->visc_tol < 1)) return bad[12];
+    if (!(p->threads >= 0 && p->threads <= SPH_MAX_THREADS)) return bad[13];
     return 0;
 }
 
@@ -167,7 +125,7 @@ void sph_world_free(sph_world *w) {
     int **ip[] = PARTICLE_INTS(w);
     for (size_t k = 0; k < sizeof ip / sizeof *ip; k++) free(*ip[k]);
     double **o[] = {&w->nb_gx, &w->nb_gy, &w->nb_f, &w->nb_w, &w->b, &w->sol, &w->bk[0], &w->bk[1], &w->bk[2],
-                    &w->bk[3], &w->solk[0], &w->solk[1], &w->solk[2], &w->solk[3], &w->rq, &w->vb, &w->vsol, &w->vval, &w->vdiag, &w->vrhs};
+                    &w->bk[3], &w->solk[0], &w->solk[1], &w->solk[2], &w->solk[3], &w->vb, &w->vsol, &w->vval, &w->vdiag, &w->vrhs};
     for (size_t k = 0; k < sizeof o / sizeof *o; k++) free(*o[k]);
     int **oi[] = {&w->cell_start, &w->cell_items, &w->nb_start, &w->nb_j, &w->row_of, &w->vrow_of};
     for (size_t k = 0; k < sizeof oi / sizeof *oi; k++) free(*oi[k]);

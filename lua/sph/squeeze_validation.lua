@@ -292,8 +292,8 @@ M.cases = {
   {
     -- the film started thin under a constant load F = 400 (the plate closes at 0.05-0.1:
     -- nearly Stokes flow). The plate closes 1.2-1.4 x faster than lubrication; part of it is
-    -- a time-step error, the projection's residual divergence next to the plates, which the
-    -- option projection_passes = 1 removes (pressure.c says why it is not the default).
+    -- a time-step error, the projection's residual divergence next to the plates
+    -- (docs/limitations.md).
     name = "Newtonian squeeze under load, thin film",
     error_name = "relative error of the slope of h^-5 against t (lubrication: 5 F / (mu A^3)) over h in [0.17, 0.18] (a/h 9.9-11), film started thin (h0 = 0.2, half-width 1.6), F = 400, Re = 1, density_correction = gmres, pressure_gradient = difference",
     resolutions = { 1 / 30, 1 / 40, 1 / 60, 1 / 80 },

@@ -50,9 +50,9 @@ T.case("thin film: no surface flags inside the stretched sample (steps 1-3000)",
           total .. " in all, " .. worst .. " at step " .. at)
   -- On to h = 0.225: from h = 0.24 the film's front is a tongue whose rows next to the
   -- free surface gather a density error the passes cannot take out (their step length 0);
-  -- the density descent (density.c) keeps it at density_limit. Measured max density error
-  -- (one thread): 0.80 % with the descent, 1.0 % at h = 0.2376 and 5.2 % by h = 0.226
-  -- without it (density_descent = 0). The limit is the suite's 1 %.
+  -- the density descent (density.c) keeps it at the density limit (0.8 %). Measured max
+  -- density error (one thread): 0.80 % with the descent, 1.0 % at h = 0.2376 and 5.2 % by
+  -- h = 0.226 without it. The limit is the suite's 1 %.
   -- From here on the suite's surface check every 10 steps as well (its criterion: no flag
   -- inside the sample, no exposed edge particle missed; stability.surface_check). Measured:
   -- 0 and 0 with -O2 on one and two threads and with make check's -O1 build. Round-off

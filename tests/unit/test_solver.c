@@ -1,4 +1,5 @@
-/* The linear solver: Jacobi-PCG and AMG-PCG (amg.c) on SPD M-matrices of growing size:
+/* The linear solver: AMG-PCG (amg.c) on SPD M-matrices of growing size, against a
+ * Jacobi-PCG reference (here, not in the engine):
  * - "poisson": the 5-point Laplacian on an m x m grid, Dirichlet on the outside;
  * - "jump": the 5-point finite-volume operator of div(k grad) with k = 1 or 1000 on an
  *   8 x 8 checkerboard over the square (harmonic mean on the faces), Dirichlet outside;
@@ -76,6 +77,47 @@ static double *smooth_rhs(int n) {
     return b;
 }
 
+/* The reference: CG preconditioned by the diagonal, from x (one thread). */
+static sph_solve_result jacobi_pcg(const sph_csr *a, const double *b, double *x, double tol, int max_iter) {
+    int n = a->n;
+    double *r = malloc(sizeof(double) * (size_t)n), *z = malloc(sizeof(double) * (size_t)n),
+           *d = malloc(sizeof(double) * (size_t)n), *q = malloc(sizeof(double) * (size_t)n);
+    sph_csr_matvec(a, x, q, 1);
+    double bb = 0.0, rz = 0.0, rr = 0.0;
+    for (int i = 0; i < n; i++) {
+        r[i] = b[i] - q[i];
+        d[i] = z[i] = r[i] / a->diag[i];
+        bb += b[i] * b[i];
+        rz += r[i] * z[i];
+        rr += r[i] * r[i];
+    }
+    double bnorm = sqrt(bb);
+    int it = 0;
+    while (sqrt(rr) > tol * bnorm && it < max_iter) {
+        sph_csr_matvec(a, d, q, 1);
+        double dq = 0.0;
+        for (int i = 0; i < n; i++) dq += d[i] * q[i];
+        double alpha = rz / dq, rz1 = 0.0;
+        rr = 0.0;
+        for (int i = 0; i < n; i++) {
+            x[i] += alpha * d[i];
+            r[i] -= alpha * q[i];
+            z[i] = r[i] / a->diag[i];
+            rr += r[i] * r[i];
+            rz1 += r[i] * z[i];
+        }
+        it++;
+        double beta = rz1 / rz;
+        rz = rz1;
+        for (int i = 0; i < n; i++) d[i] = z[i] + beta * d[i];
+    }
+    free(r);
+    free(z);
+    free(d);
+    free(q);
+    return (sph_solve_result){it, sqrt(rr) / bnorm, sqrt(rr) <= tol * bnorm};
+}
+
 static double norm_diff(const double *x, const double *y, int n) {
     double s = 0.0, t = 0.0;
     for (int i = 0; i < n; i++) {
@@ -102,7 +144,7 @@ int main(void) {
             for (int r = 0; r < n; r++) b[r] = sin(0.1 * (r % m)) + 0.5 * ((r * 7919) % 13 - 6) / 6.0 + 1.0;
             sph_solver sv = {0};
             sph_solver_reserve(&sv, n);
-            int rc = sph_solver_setup(&sv, &a, SPH_SOLVER_AMG, 1);
+            int rc = sph_solver_setup(&sv, &a, 1);
             snprintf(nm, sizeof nm, "%s m=%d: AMG setup", names[kind], m);
             CHECK(rc == 0 && sv.amg.levels > 1, nm, "rc %d, %d levels", rc, sv.amg.levels);
             sph_solve_result ra = sph_solver_pcg(&sv, &a, b, xa, tol, 5000, 1);
@@ -118,8 +160,7 @@ int main(void) {
             }
             snprintf(nm, sizeof nm, "%s m=%d: reported residual is ||b - Ax|| / ||b||", names[kind], m);
             CHECK(sqrt(rr / bb) <= 1.01 * tol, nm, "true residual %g", sqrt(rr / bb));
-            sph_solver_setup(&sv, &a, SPH_SOLVER_JACOBI, 1);
-            sph_solve_result rj = sph_solver_pcg(&sv, &a, b, xj, tol, 100000, 1);
+            sph_solve_result rj = jacobi_pcg(&a, b, xj, tol, 100000);
             double diff = norm_diff(xa, xj, n);
             /* both solutions are within cond(A) tol of the exact one; cond of these matrices
              * is at most ~1e5 (jump, m = 256), measured differences are below 2e-6 */
@@ -157,9 +198,9 @@ int main(void) {
         double *b = smooth_rhs(n), *x1 = calloc((size_t)n, sizeof(double)), *x2 = calloc((size_t)n, sizeof(double));
         sph_solver sv = {0};
         sph_solver_reserve(&sv, n);
-        sph_solver_setup(&sv, &a, SPH_SOLVER_AMG, 1);
+        sph_solver_setup(&sv, &a, 1);
         sph_solve_result r1 = sph_solver_pcg(&sv, &a, b, x1, 1e-8, 500, 1);
-        sph_solver_setup(&sv, &a, SPH_SOLVER_AMG, 2);
+        sph_solver_setup(&sv, &a, 2);
         sph_solve_result r2 = sph_solver_pcg(&sv, &a, b, x2, 1e-8, 500, 2);
         printf("# wide m=128 threads 1: %d it, threads 2: %d it\n", r1.iterations, r2.iterations);
         CHECK(r2.converged && r2.iterations <= r1.iterations + 3, "AMG-PCG with 2 threads converges like 1 thread",
@@ -175,7 +216,7 @@ int main(void) {
         a.val[a.start[n / 2]] = -a.diag[n / 2];
         a.diag[n / 2] = -a.diag[n / 2];
         b[n / 2] = 1.0;
-        int rc = sph_solver_setup(&sv, &a, SPH_SOLVER_AMG, 1);
+        int rc = sph_solver_setup(&sv, &a, 1);
         for (int r = 0; r < n; r++) x1[r] = 0.0;
         sph_solve_result ri = sph_solver_pcg(&sv, &a, b, x1, 1e-8, 500, 1);
         double *q = malloc(sizeof(double) * (size_t)n), rr = 0.0, bb = 0.0;
@@ -207,11 +248,11 @@ int main(void) {
                *x2 = calloc((size_t)n, sizeof(double));
         sph_solver sv = {0};
         sph_solver_reserve(&sv, n);
-        sph_solver_setup(&sv, &a, SPH_SOLVER_AMG, 1);
+        sph_solver_setup(&sv, &a, 1);
         sph_solve_result rw = sph_solver_pcg(&sv, &a, b, xw, 1e-8, 500, 1);
         sph_solver_vcycle(&sv, &a);
         sph_solve_result rv = sph_solver_pcg(&sv, &a, b, xv, 1e-8, 500, 1);
-        sph_solver_setup(&sv, &a, SPH_SOLVER_AMG, 1);
+        sph_solver_setup(&sv, &a, 1);
         sph_solve_result r2 = sph_solver_pcg(&sv, &a, b, x2, 1e-8, 500, 1);
         printf("# wide m=128: W-cycle %d it, V-cycle %d it, W after a new setup %d it\n", rw.iterations,
                rv.iterations, r2.iterations);
@@ -262,7 +303,7 @@ int main(void) {
         sph_solver sv = {0};
         sph_solver_reserve(&sv, n);
         /* alone: the first, then the second's values into the same matrix, refreshed */
-        sph_solver_setup(&sv, &a, SPH_SOLVER_AMG, th);
+        sph_solver_setup(&sv, &a, th);
         sph_solve_result s1 = sph_solver_pcg(&sv, &a, b1, y1, 1e-8, 500, th);
         memcpy(a.val, val2, sizeof(double) * (size_t)nnz);
         memcpy(a.diag, diag2, sizeof(double) * (size_t)n);
@@ -274,7 +315,7 @@ int main(void) {
         sph_csr a2 = a;
         a2.val = val2;
         a2.diag = diag2;
-        sph_solver_setup(&sv, &a, SPH_SOLVER_AMG, th);
+        sph_solver_setup(&sv, &a, th);
         int rc = sph_solver_second(&sv, &a, &a2, th);
         sph_solve_result res[2];
         sph_solver_pcg2(&sv, &a, &a2, b1, b2, x1, x2, 1e-8, 500, th, res);
@@ -290,7 +331,7 @@ int main(void) {
               s1.iterations, same2 ? "same" : "differs", res[1].iterations, s2.iterations);
         /* the pair set up in one pass (sph_solver_setup_pair, viscous.c): the same figures */
         double *z1 = calloc((size_t)n, sizeof(double)), *z2 = calloc((size_t)n, sizeof(double));
-        rc = sph_solver_setup_pair(&sv, &a, &a2, SPH_SOLVER_AMG, th, 0, 0);
+        rc = sph_solver_setup_pair(&sv, &a, &a2, th, 0, 0);
         sph_solve_result rp[2];
         sph_solver_pcg2(&sv, &a, &a2, b1, b2, z1, z2, 1e-8, 500, th, rp);
         snprintf(nm, sizeof nm, "setup_pair (%d thread(s)): bit for bit setup + second", th);
@@ -346,7 +387,7 @@ int main(void) {
         for (int r = 0; r < n; r++) b[r] -= mean;
         sph_solver sv = {0};
         sph_solver_reserve(&sv, n);
-        int rc = sph_solver_setup(&sv, &a, SPH_SOLVER_AMG, 1);
+        int rc = sph_solver_setup(&sv, &a, 1);
         sph_solve_result rs = sph_solver_pcg(&sv, &a, b, x, 1e-8, 500, 1);
         printf("# singular Neumann 10 x 10: setup rc %d, %d levels, converged %d after %d iterations, residual %g\n", rc,
                sv.amg.levels, rs.converged, rs.iterations, rs.residual);
@@ -395,7 +436,7 @@ int main(void) {
         b[nb] = 1.0, b[nb + 1] = -0.5, b[nb + 2] = -1.0, b[nb + 3] = 0.5; /* zero sum */
         sph_solver sv = {0};
         sph_solver_reserve(&sv, n);
-        int rc = sph_solver_setup(&sv, &c, SPH_SOLVER_AMG, 1);
+        int rc = sph_solver_setup(&sv, &c, 1);
         sph_solve_result rs = sph_solver_pcg(&sv, &c, b, x, 1e-8, 500, 1);
         printf("# Poisson with a Neumann cluster: setup rc %d, %d levels, converged %d after %d iterations, residual %g\n",
                rc, sv.amg.levels, rs.converged, rs.iterations, rs.residual);
@@ -448,16 +489,16 @@ int main(void) {
         sph_solver sv = {0}, fresh = {0};
         sph_solver_reserve(&sv, n);
         sph_solver_reserve(&fresh, n);
-        int rc0 = sph_solver_setup_reuse(&sv, &a, SPH_SOLVER_AMG, 1, row_of, id);
+        int rc0 = sph_solver_setup_reuse(&sv, &a, 1, row_of, id);
         sph_solve_result r0 = sph_solver_pcg(&sv, &a, b, x, 1e-8, 500, 1);
         int f16_before = sv.cur->lev[0].S.f16;
         sph_csr t = a; /* the renumbered matrix at the same address, as the engine's */
         a = c;
         c = t;
-        int rc1 = sph_solver_setup_reuse(&sv, &a, SPH_SOLVER_AMG, 1, row_of, id2);
+        int rc1 = sph_solver_setup_reuse(&sv, &a, 1, row_of, id2);
         sph_solve_result r1 = sph_solver_pcg(&sv, &a, b2, x2, 1e-8, 500, 1);
         int f16_after = sv.cur->lev[0].S.f16;
-        sph_solver_setup(&fresh, &a, SPH_SOLVER_AMG, 1);
+        sph_solver_setup(&fresh, &a, 1);
         sph_solve_result r2 = sph_solver_pcg(&fresh, &a, b2, x3, 1e-8, 500, 1);
         for (int r = 0; r < n; r++) xp[r] = x[perm[r]];
         printf("# reuse, wide m=%d renumbered: first %d it, kept hierarchy %d it (reuses %ld), fresh %d it\n", m,
