@@ -68,10 +68,12 @@ T.case("Newtonian squeeze at constant velocity against lubrication", function()
   -- force; V = 0.1 at Re = 1 gives the same run as V = 1 at Re = 0.1, to the digit.) The
   -- squeeze is chaotic at the percent level: round-off variants (one and two threads,
   -- solver tolerances 1e-6 to 1e-8) spread the error by 0.011 at 1/20. Bounds: the
-  -- measured errors plus that spread and a margin of 0.015; the order within 0.5 of 0.15.
+  -- measured errors plus that spread and a margin of 0.015. Lubrication is not the limit
+  -- here (FE is 3-7 % above it), so no order is asked of this error: only that it does not
+  -- grow with refinement beyond the round-off spread.
   T.below(rs[1].error, 0.18, "Newtonian squeeze V = 1, dx = 1/20: error under 0.18")
   T.below(rs[2].error, 0.165, "Newtonian squeeze V = 1, dx = 1/30: error under 0.165")
-  T.close(order, 0.15, 0.5, "Newtonian squeeze V = 1: observed order within 0.5 of 0.15")
+  T.below(rs[2].error, rs[1].error + 0.011, "Newtonian squeeze V = 1: the error does not grow from dx = 1/20 to 1/30")
   T.below(rs[2].peak_density_error, 0.03, "Newtonian squeeze V = 1, dx = 1/30: peak density error under 3 %")
 end)
 
@@ -81,11 +83,12 @@ T.case("Newtonian squeeze in the thin-film regime against lubrication", function
   -- (density_correction = gmres, pressure_gradient = difference). Measured (one thread):
   -- errors 0.1475 / 0.1217 (order 0.67; force 0.860 / 0.884 x lubrication) with -O2,
   -- 0.1593 / 0.1226 (order 0.91) under make check's -O1 sanitizer build; finer, 0.1102
-  -- / 0.0861 / 0.088 at 1/60, 1/80, 1/100 (make bench). References: the two builds' middle;
-  -- tolerances 0.02 and 0.015 (the builds differ by 0.012 and 0.001), 0.5 on the order.
-  T.close(rs[1].error, 0.153, 0.02, "Newtonian thin film, dx = 1/30: error within 0.02 of 0.153")
-  T.close(rs[2].error, 0.122, 0.015, "Newtonian thin film, dx = 1/40: error within 0.015 of 0.122")
-  T.close(order, 0.79, 0.5, "Newtonian thin film: observed order within 0.5 of 0.79 (converging)")
+  -- / 0.0861 / 0.088 at 1/60, 1/80, 1/100 (make bench). Lubrication is the limit at a/h
+  -- 10 (FE 0.997 x it). Bounds: the larger build's error plus 0.015; the order at least 0.3
+  -- (measured 0.67-0.91).
+  T.below(rs[1].error, 0.175, "Newtonian thin film, dx = 1/30: error under 0.175")
+  T.below(rs[2].error, 0.14, "Newtonian thin film, dx = 1/40: error under 0.14")
+  T.check(order >= 0.3, "Newtonian thin film: observed order at least 0.3 (converging)", string.format("order %.2f", order))
   T.below(rs[2].peak_density_error, 0.01, "Newtonian thin film, dx = 1/40: peak density error under 1 %")
 end)
 
@@ -102,8 +105,10 @@ T.case("Bingham squeeze in the thin-film regime against thin-film theory", funct
   -- on each, over the largest measured by a third or more: a trend off by 0.07 is a real
   -- departure from the theory, not noise. With the defaults this film blows up
   -- (squeeze_validation.lua).
-  T.close(rs[1].mean_ratio, 1.012, 0.03, "Bingham thin film, dx = 1/30: force within 0.03 of 1.012 x thin-film theory")
-  T.close(rs[2].mean_ratio, 0.997, 0.03, "Bingham thin film, dx = 1/40: force within 0.03 of 0.997 x thin-film theory")
+  -- Thin-film theory is the limit at a/h 10 (the Newtonian FE film is within 0.3 % of it):
+  -- |ratio - 1| at most 0.045 (measured 0.012 and 0.004, the -O1 build's 0.012 / 0.004).
+  T.below(math.abs(rs[1].mean_ratio - 1), 0.045, "Bingham thin film, dx = 1/30: force within 4.5 % of thin-film theory")
+  T.below(math.abs(rs[2].mean_ratio - 1), 0.045, "Bingham thin film, dx = 1/40: force within 4.5 % of thin-film theory")
   for k, name in ipairs{ "1/30", "1/40" } do
     print(string.format("# Bingham thin film, dx = %s: error %.4f = trend %.4f (+) noise %.4f", name, rs[k].error,
       rs[k].trend_error, rs[k].noise))
@@ -121,10 +126,11 @@ T.case("Newtonian squeeze under a constant load against lubrication", function()
   -- faster than lubrication says (1.39-1.48 with p = 0 at the free surface), which at a/h
   -- 2.5-4.1 is mostly the FE rectangles' 3-7 % over lubrication and the time error.
   -- Bounds: the measured errors plus 0.03 (a loaded run integrates the force's noise into
-  -- h); the order within 0.6 of 0.52.
+  -- h). Lubrication is not the limit at this aspect ratio, so no order is asked of this
+  -- error: only that it does not grow with refinement beyond that noise.
   T.below(rs[1].error, 0.25, "Newtonian squeeze F = 20, dx = 1/20: error under 0.25")
   T.below(rs[2].error, 0.24, "Newtonian squeeze F = 20, dx = 1/30: error under 0.24")
-  T.close(order, 0.52, 0.6, "Newtonian squeeze F = 20: observed order within 0.6 of 0.52")
+  T.below(rs[2].error, rs[1].error + 0.03, "Newtonian squeeze F = 20: the error does not grow from dx = 1/20 to 1/30")
 end)
 
 T.case("Newtonian squeeze under a constant load in the thin-film regime against lubrication", function()
@@ -133,14 +139,15 @@ T.case("Newtonian squeeze under a constant load in the thin-film regime against 
   -- plate closes at 0.05-0.1, Re = 1: nearly Stokes flow); error |slope of h^-5 / (5 F /
   -- (mu A^3)) - 1| over h in [0.17, 0.18]. Measured over 18 round-off variants (1 and 2
   -- threads x pressure tolerance 1e-6 / 1e-7 / 1e-8 x dx and dx +- 1e-10): 0.360-0.382 at
-  -- 1/30, 0.279-0.300 at 1/40; the references are the middles, 0.371 and 0.289, tolerance
-  -- 0.015, and 0.5 on the order. The plate closes 1.2-1.4 x faster than lubrication; part
+  -- 1/30, 0.279-0.300 at 1/40. Lubrication is the limit at a/h 10. Bounds: the largest
+  -- variant plus 0.01 (0.39 and 0.31); the order at least 0.3 (the variants' orders
+  -- 0.63-1.1). The plate closes 1.2-1.4 x faster than lubrication; part
   -- of it is a time-step error, the projection's residual divergence next to the plates
   -- (docs/limitations.md). The peak density error reaches 1.3-2.7 % in this film: not
   -- asserted here.
-  T.close(rs[1].error, 0.371, 0.015, "Newtonian thin film under load, dx = 1/30: error within 0.015 of 0.371")
-  T.close(rs[2].error, 0.289, 0.015, "Newtonian thin film under load, dx = 1/40: error within 0.015 of 0.289")
-  T.close(order, 0.77, 0.5, "Newtonian thin film under load: observed order within 0.5 of 0.77")
+  T.below(rs[1].error, 0.39, "Newtonian thin film under load, dx = 1/30: error under 0.39")
+  T.below(rs[2].error, 0.31, "Newtonian thin film under load, dx = 1/40: error under 0.31")
+  T.check(order >= 0.3, "Newtonian thin film under load: observed order at least 0.3", string.format("order %.2f", order))
   T.below(rs[2].error, rs[1].error, "Newtonian thin film under load: the error falls from dx = 1/30 to 1/40")
 end)
 
@@ -148,14 +155,17 @@ T.case("Bingham squeeze, Bn = 100, at constant velocity against thin-film Bingha
   -- dx = 1/20 only here (CPU budget); dx = 1/30 and 1/40 are in make bench
   local rs = study(cases["Bingham squeeze Bn = 100 V = 1"], { 1 / 20 })
   -- measured (one thread, M = 100, Re = 1): error 0.1505, force 1.1558 x the thin-film
-  -- Bingham load with -O2 (0.1512, 1.1567 under make check's -O1 build): the references,
-  -- tolerances 0.02 and 0.03. The thin-film load is itself 1.40-1.81 x the plastic limit
-  -- tau0 / (2 h^3) in the window (at Bn = 100 and V = 1 the viscous part is not small);
-  -- what is left (1.16-1.19 x thin-film theory at a / h 2.5-4.1) is the resolution and the
-  -- theory's own neglect of the edge. M = 1000 gives about the same error at 1/20: the
-  -- regularisation does not matter.
-  T.close(rs[1].error, 0.151, 0.02, "Bingham squeeze V = 1, dx = 1/20: error within 0.02 of 0.151")
-  T.close(rs[1].mean_ratio, 1.156, 0.03, "Bingham squeeze V = 1, dx = 1/20: mean force within 0.03 of 1.156 x thin-film theory")
+  -- Bingham load with -O2 (0.1512, 1.1567 under make check's -O1 build). Thin-film theory
+  -- is not the limit at a / h 2.5-4.1: the rigid-plastic FE limit load (REFERENCES.md
+  -- section 3, 1/(2h^3) + 1.5/h per tau0) is 1.37-1.61 x lubrication's plastic term in the
+  -- window, and the dissipation being superadditive, the force is at least the plastic FE
+  -- load plus the viscous one: about 1.34 x thin-film theory. sph is below that (docs/
+  -- limitations.md: the Bingham free surface holds p = 0); the bound asserted is the one
+  -- that holds for the physics and for today's run, ratio at least 1.1 (thin-film theory
+  -- less its 10 % edge allowance), so that an improvement passes. M = 1000 gives about the
+  -- same at 1/20: the regularisation does not matter.
+  T.check(rs[1].mean_ratio >= 1.1, "Bingham squeeze V = 1, dx = 1/20: mean force at least 1.1 x thin-film theory",
+          string.format("%.4f", rs[1].mean_ratio))
   -- The force does not depend on dt (the pressure predictor's purpose): the same run with
   -- dt_max = 1e-4 (6521 steps against 2019) measured 1.1781 against 1.1558, 0.022 apart
   -- (0.067 without the predictor). Tolerance 0.035.
