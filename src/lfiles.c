@@ -89,13 +89,8 @@ static int w_write_vtu(lua_State *L) {
         if (t != LUA_TNIL) o.mirror = lua_toboolean(L, -1);
         lua_pop(L, 1);
     }
-    if (sph_world_write_vtu(w, file, &o) < 0) {
-        luaL_pushfail(L);
-        lua_pushstring(L, sph_world_error(w));
-        return 2;
-    }
-    lua_pushboolean(L, 1);
-    return 1;
+    int rc = sph_world_write_vtu(w, file, &o);
+    return sph_lua_result(L, rc, rc < 0 ? sph_world_error(w) : 0);
 }
 
 /* sph.pvd_write(file, {{t = , file = }, ...}): true, or nil and a message */
@@ -130,13 +125,7 @@ static int l_pvd_write(lua_State *L) {
         lua_pop(L, 2);
     }
     char err[512] = "";
-    if (sph_write_pvd(file, (size_t)n, t, files, err, sizeof err) < 0) {
-        luaL_pushfail(L);
-        lua_pushstring(L, err);
-        return 2;
-    }
-    lua_pushboolean(L, 1);
-    return 1;
+    return sph_lua_result(L, sph_write_pvd(file, (size_t)n, t, files, err, sizeof err), err);
 }
 
 void sph_lua_files_open(lua_State *L) {

@@ -46,3 +46,13 @@ int sph_lua_opt_present(lua_State *L, int idx, const char *key) {
     lua_pop(L, 1);
     return t != LUA_TNIL;
 }
+
+int sph_lua_result(lua_State *L, int rc, const char *err) {
+    if (rc < 0) {
+        luaL_pushfail(L);
+        lua_pushstring(L, err);
+        return 2;
+    }
+    lua_pushboolean(L, 1);
+    return 1;
+}

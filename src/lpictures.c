@@ -76,16 +76,6 @@ static int opt_numbers(lua_State *L, int idx, const char *fname, const char *key
 static void *scratch(lua_State *L, size_t bytes) { return lua_newuserdatauv(L, bytes ? bytes : 1, 0); }
 
 /* true, or nil and the message */
-static int result(lua_State *L, int rc, const char *err) {
-    if (rc < 0) {
-        luaL_pushfail(L);
-        lua_pushstring(L, err);
-        return 2;
-    }
-    lua_pushboolean(L, 1);
-    return 1;
-}
-
 /* ---- w:render{...} -------------------------------------------------------------- */
 
 /* a label that shows its own time: "t", optional spaces, "=" at its start */
@@ -203,7 +193,7 @@ static int w_render(lua_State *L) {
     char err[512] = "";
     sph_render_frame f;
     if (sph_render_layout(&s, &f, err, sizeof err) < 0) return luaL_error(L, "render: %s", err);
-    return result(L, sph_render_png(&s, file, err, sizeof err), err);
+    return sph_lua_result(L, sph_render_png(&s, file, err, sizeof err), err);
 }
 
 /* ---- sph.plot{...} -------------------------------------------------------------- */
@@ -306,7 +296,7 @@ static int l_plot(lua_State *L) {
     char err[512] = "";
     sph_plot_frame f;
     if (sph_plot_layout(&s, &f, err, sizeof err) < 0) return luaL_error(L, "plot: %s", err);
-    return result(L, sph_plot_png(&s, file, err, sizeof err), err);
+    return sph_lua_result(L, sph_plot_png(&s, file, err, sizeof err), err);
 }
 
 /* ---- sph.animate{...} ----------------------------------------------------------- */
@@ -336,7 +326,7 @@ static int l_animate(lua_State *L) {
         frames[i - 1] = lua_tostring(L, -1); /* anchored in the frames table */
         lua_pop(L, 1);
     }
-    return result(L, sph_animate_png(frames, (size_t)n, fps, loop, file, err, sizeof err), err);
+    return sph_lua_result(L, sph_animate_png(frames, (size_t)n, fps, loop, file, err, sizeof err), err);
 }
 
 /* ---- registration --------------------------------------------------------------- */

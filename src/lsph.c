@@ -713,13 +713,7 @@ static int w_set_velocity(lua_State *L) {
 }
 
 static int write_result(lua_State *L, sph_world *w, int rc) {
-    if (rc < 0) {
-        luaL_pushfail(L);
-        lua_pushstring(L, sph_world_error(w));
-        return 2;
-    }
-    lua_pushboolean(L, 1);
-    return 1;
+    return sph_lua_result(L, rc, rc < 0 ? sph_world_error(w) : 0);
 }
 
 static int w_write_csv(lua_State *L) {

@@ -19,6 +19,10 @@ void sph_lua_pictures_open(lua_State *L);
 /* Files (lfiles.c): with the module table on top, add sph.mkdir. */
 void sph_lua_files_open(lua_State *L);
 
+/* The result of a function that writes a file (loptions.c): true, or, when rc < 0, nil and
+   the message err (files are written whole or not at all, so nothing else to report). */
+int sph_lua_result(lua_State *L, int rc, const char *err);
+
 /* Options tables (loptions.c). Errors name the function and the option. */
 /* Reject keys of the table at idx that are not in the NULL-terminated keys. */
 void sph_lua_opt_only(lua_State *L, int idx, const char *fname, const char *const *keys);
