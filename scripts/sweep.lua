@@ -17,16 +17,8 @@
 -- task; then `build/sph scripts/sweep.lua <the same arguments> workers=0 gather=1`
 -- gathers.
 local sph = require "sph"
-local o = ... or {}
-if type(o) ~= "table" then -- a stock lua5.4: name=value strings
-  local t = {}
-  for _, a in ipairs{ ... } do
-    local k, v = a:match("^([^=]+)=(.*)$")
-    if not k then io.stderr:write("sweep: argument '", a, "': name=value expected\n"); os.exit(1) end
-    t[k] = tonumber(v) or v
-  end
-  o = t
-end
+local ok, o = pcall(require("sph.params").raw, ...)
+if not ok then io.stderr:write("sweep: ", tostring(o), "\n"); os.exit(1) end
 
 local here = (arg and arg[0] or "scripts/sweep.lua"):match("^(.*)/[^/]*$") or "."
 local script = o.script or (here .. "/squeeze.lua")

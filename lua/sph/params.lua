@@ -55,8 +55,10 @@ local function convert(name, kind, v)
   return x
 end
 
--- The raw name -> value table from the script's arguments.
-local function raw(...)
+-- The raw name -> value table from the script's arguments (the host's table as it is, a
+-- stock lua5.4's "name=value" strings split, values left as strings), unchecked: for a
+-- script whose parameters are open-ended, such as a sweep's.
+function P.raw(...)
   local first = ...
   if type(first) == "table" then return first end
   local t = {}
@@ -75,7 +77,7 @@ end
 function P.parse(script, spec, ...)
   local by = {}
   for _, s in ipairs(spec) do by[s[1]] = s end
-  local ok, given = pcall(raw, ...)
+  local ok, given = pcall(P.raw, ...)
   if not ok then error(script .. ": " .. given, 0) end
   local names = {}
   for k in pairs(given) do names[#names + 1] = k end
