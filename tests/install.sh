@@ -103,8 +103,7 @@ check "and with the static flags against libsph.a (cairo from Requires.private),
 
 # a stock lua5.4 with the standard 5.4 layout under the prefix (and nothing else) on its paths
 stock_lua() {
-    pre=env # a module built with the sanitizers needs their runtime loaded first
-    [ -n "$san" ] && pre="env LD_PRELOAD=$($CC -print-file-name=libasan.so) ASAN_OPTIONS=detect_leaks=0"
+    pre="env $SPH_LUA_PRELOAD" # a sanitizer build's module needs their runtime first (tests/run.sh)
     $pre LUA_CPATH="$prefix/lib/lua/5.4/?.so" LUA_PATH="$prefix/share/lua/5.4/?.lua" lua5.4 -e '
         local sph = require "sph"
         local params = require "sph.params"

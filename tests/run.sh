@@ -8,6 +8,13 @@ B=${1:-build}
 # cores (a busy CI machine) spinning made test_cavity spend 78 % of its time in libgomp
 # and the suite several times slower.
 export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
+# A stock lua5.4 loading a sanitizer build's module needs the sanitizer runtime loaded
+# first: the tests that run one prefix its command with this (empty for a normal build).
+case "$B" in
+    *san*) SPH_LUA_PRELOAD="LD_PRELOAD=$(${CC:-cc} -print-file-name=libasan.so) ASAN_OPTIONS=detect_leaks=0" ;;
+    *) SPH_LUA_PRELOAD= ;;
+esac
+export SPH_LUA_PRELOAD
 top=$(cd "$(dirname "$0")/.." && pwd)
 pass=0; fail=0
 start_all=$(date +%s)
