@@ -27,7 +27,7 @@ local sph = require "sph"
 local params = require "sph.params"
 local flows = require "sph.flows" -- Ghia's tables and a moving-least-squares probe
 
-local ok, o = pcall(params.parse, "cavity", {
+local o = params.args("cavity", {
   { "Re", "number", 100, "Reynolds number U L / nu" },
   { "dx", "number", 0.05, "particle spacing" },
   { "t_end", "number", 10, "end time" },
@@ -36,7 +36,6 @@ local ok, o = pcall(params.parse, "cavity", {
   { "threads", "integer", 0, "threads (0: all cores)" },
   { "out", "string", "out/cavity", "output folder" },
 }, ...)
-if not ok then io.stderr:write(o, "\n"); os.exit(1) end -- a bad parameter: say which, exit 1
 assert(sph.mkdir(o.out))
 
 local w = sph.world{ dx = o.dx, rho = 1, shifting = 20, density_tol = 0.04, surface = 0, threads = o.threads }

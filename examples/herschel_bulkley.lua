@@ -26,7 +26,7 @@
 local sph = require "sph"
 local params = require "sph.params"
 
-local ok, o = pcall(params.parse, "herschel_bulkley", {
+local o = params.args("herschel_bulkley", {
   { "K", "number", 1, "consistency" },
   { "n", "number", 0.5, "flow index" },
   { "tau0", "number", 0.5, "yield stress" },
@@ -40,7 +40,6 @@ local ok, o = pcall(params.parse, "herschel_bulkley", {
   { "threads", "integer", 0, "threads (0: all cores)" },
   { "out", "string", "out/herschel_bulkley", "output folder" },
 }, ...)
-if not ok then io.stderr:write(o, "\n"); os.exit(1) end -- a bad parameter: say which, exit 1
 assert(sph.mkdir(o.out))
 
 -- the largest value of a field (table.unpack would hit Lua's limit on big runs)

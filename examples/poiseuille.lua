@@ -24,7 +24,7 @@
 local sph = require "sph"
 local params = require "sph.params"
 
-local ok, o = pcall(params.parse, "poiseuille", {
+local o = params.args("poiseuille", {
   { "g", "number", 8, "body force per unit mass along x" },
   { "mu", "number", 1, "viscosity" },
   { "rho", "number", 1, "density" },
@@ -35,7 +35,6 @@ local ok, o = pcall(params.parse, "poiseuille", {
   { "threads", "integer", 0, "threads (0: all cores)" },
   { "out", "string", "out/poiseuille", "output folder" },
 }, ...)
-if not ok then io.stderr:write(o, "\n"); os.exit(1) end -- a bad parameter: say which, exit 1
 assert(sph.mkdir(o.out))
 
 -- the largest value of a field (table.unpack would hit Lua's limit on big runs)

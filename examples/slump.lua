@@ -27,7 +27,7 @@
 local sph = require "sph"
 local params = require "sph.params"
 
-local ok, o = pcall(params.parse, "slump", {
+local o = params.args("slump", {
   { "rho", "number", 1, "density" },
   { "g", "number", 1, "gravity" },
   { "mu", "number", 0.1, "plastic viscosity" },
@@ -42,7 +42,6 @@ local ok, o = pcall(params.parse, "slump", {
   { "threads", "integer", 0, "threads (0: all cores)" },
   { "out", "string", "out/slump", "output folder" },
 }, ...)
-if not ok then io.stderr:write(o, "\n"); os.exit(1) end -- a bad parameter: say which, exit 1
 assert(sph.mkdir(o.out))
 
 -- the largest value of a field (table.unpack would hit Lua's limit on big runs)

@@ -29,7 +29,7 @@
 local sph = require "sph"
 local params = require "sph.params"
 
-local ok, o = pcall(params.parse, "squeeze_load", {
+local o = params.args("squeeze_load", {
   { "Re", "number", 1, "Reynolds number (the density)" },
   { "Bn", "number", 2, "Bingham number (the yield stress)" },
   { "M", "number", 100, "Papanastasiou exponent" },
@@ -41,7 +41,6 @@ local ok, o = pcall(params.parse, "squeeze_load", {
   { "threads", "integer", 0, "threads (0: all cores)" },
   { "out", "string", "out/squeeze_load", "output folder" },
 }, ...)
-if not ok then io.stderr:write(o, "\n"); os.exit(1) end -- a bad parameter: say which, exit 1
 assert(sph.mkdir(o.out))
 
 -- the largest value of a field (table.unpack would hit Lua's limit on big runs)

@@ -27,7 +27,7 @@
 local sph = require "sph"
 local params = require "sph.params"
 
-local ok, o = pcall(params.parse, "squeeze_ramp", {
+local o = params.args("squeeze_ramp", {
   { "Re", "number", 1, "Reynolds number (the density)" },
   { "Bn", "number", 2, "Bingham number (the yield stress)" },
   { "M", "number", 100, "Papanastasiou exponent" },
@@ -40,7 +40,6 @@ local ok, o = pcall(params.parse, "squeeze_ramp", {
   { "threads", "integer", 0, "threads (0: all cores)" },
   { "out", "string", "out/squeeze_ramp", "output folder" },
 }, ...)
-if not ok then io.stderr:write(o, "\n"); os.exit(1) end -- a bad parameter: say which, exit 1
 assert(sph.mkdir(o.out))
 
 -- the largest value of a field (table.unpack would hit Lua's limit on big runs)

@@ -26,7 +26,7 @@
 local sph = require "sph"
 local params = require "sph.params"
 
-local ok, o = pcall(params.parse, "squeeze_velocity", {
+local o = params.args("squeeze_velocity", {
   { "Re", "number", 10, "Reynolds number (the density)" },
   { "Bn", "number", 0.5, "Bingham number (the yield stress)" },
   { "M", "number", 100, "Papanastasiou exponent" },
@@ -38,7 +38,6 @@ local ok, o = pcall(params.parse, "squeeze_velocity", {
   { "threads", "integer", 0, "threads (0: all cores)" },
   { "out", "string", "out/squeeze_velocity", "output folder" },
 }, ...)
-if not ok then io.stderr:write(o, "\n"); os.exit(1) end -- a bad parameter: say which, exit 1
 assert(sph.mkdir(o.out))
 
 -- the largest value of a field (table.unpack would hit Lua's limit on big runs)

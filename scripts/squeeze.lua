@@ -69,11 +69,7 @@ local SPEC = {
   { "tol", "number", nil, "pressure solve's relative residual" },
   { "visc_tol", "number", nil, "viscous solve's relative residual" },
 }
-local ok, o = pcall(params.parse, "squeeze", SPEC, ...)
-if not ok then
-  io.stderr:write(tostring(o), "\n")
-  os.exit(1)
-end
+local o = params.args("squeeze", SPEC, ...) -- a bad parameter: named, exit 1
 
 local mode = o.mode
 local function fail(msg)

@@ -107,6 +107,17 @@ function P.parse(script, spec, ...)
   return o
 end
 
+-- As parse, for a script's own arguments: a bad parameter is reported on stderr
+-- ("script: ...") and ends the script with status 1.
+function P.args(script, spec, ...)
+  local ok, o = pcall(P.parse, script, spec, ...)
+  if not ok then
+    io.stderr:write(tostring(o), "\n")
+    os.exit(1)
+  end
+  return o
+end
+
 -- The parameters as lines "name  default  help", for a script's usage message.
 function P.usage(spec)
   local lines = {}
