@@ -263,9 +263,9 @@ local function clear_progress()
     progress_shown = false
   end
 end
-local function progress(w)
+local function progress(w, el)
   if not progress_on or w.t <= 0 then return end
-  local el, f = w:stats().wall_time, math.min(1, w.t / t_end)
+  local f = math.min(1, w.t / t_end)
   local left = f > 0 and el * (1 - f) / f or 0
   local function hms(x)
     x = math.floor(x + 0.5)
@@ -277,8 +277,10 @@ local function progress(w)
   io.stderr:flush()
   progress_shown = true
 end
+local last_wall = 0 -- the wall time at the last output (for the progress line)
 local function record(w)
   local s = w:stats()
+  last_wall = s.wall_time
   local h = top.position
   if not thin_noted and h < 12 * dx then
     thin_noted = true
@@ -316,7 +318,7 @@ end
 -- still written (series, frames, plots)
 local ok, run_err = pcall(w.run, w, { until_t = t_end, every = every, t0 = 0, each = function(w)
   local r = record(w)
-  progress(w)
+  progress(w, last_wall)
   return r
 end })
 clear_progress()
