@@ -67,8 +67,8 @@ static double quantity(const view *c, int i, int q) {
     case Q_RHO: return w->rho[i];
     case Q_ETA: return fl ? w->eta[i] : 0;
     case Q_GAMMADOT: return fl ? w->gd[i] : 0;
-    case Q_STRESS: return fl ? w->eta[i] * w->gd[i] : 0;
-    case Q_YIELDED: return fl && w->eta[i] * w->gd[i] > w->mats[w->mat[i]].tau0;
+    case Q_STRESS: return fl ? sph_particle_stress(w, i) : 0;
+    case Q_YIELDED: return fl && sph_particle_yielded(w, i);
     case Q_SURFACE: return fl ? w->surf[i] : 0;
     }
     return 0;

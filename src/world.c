@@ -547,7 +547,7 @@ void sph_world_stats(const sph_world *w, sph_stats *s) {
         area += w->m[i] / w->rho[i];
         if (s2 > umax) umax = s2;
         if (w->eta[i] > etamax) etamax = w->eta[i];
-        yielded += w->eta[i] * w->gd[i] > w->mats[w->mat[i]].tau0;
+        yielded += sph_particle_yielded(w, i);
     }
     s->kinetic_energy = ke;
     s->area = area;
@@ -591,7 +591,7 @@ int sph_world_field(const sph_world *w, const char *name, double *out) {
     int c = 0;
     for (int i = 0; i < w->n; i++) {
         if (w->kind[i] != SPH_FLUID) continue;
-        double tau0 = w->mats[w->mat[i]].tau0, v = 0;
+        double v = 0;
         switch (f) {
         case 0: v = w->x[i]; break;
         case 1: v = w->y[i]; break;
@@ -601,8 +601,8 @@ int sph_world_field(const sph_world *w, const char *name, double *out) {
         case 5: v = w->rho[i]; break;
         case 6: v = w->eta[i]; break;
         case 7: v = w->gd[i]; break;
-        case 8: v = w->eta[i] * w->gd[i]; break;
-        case 9: v = w->eta[i] * w->gd[i] > tau0; break;
+        case 8: v = sph_particle_stress(w, i); break;
+        case 9: v = sph_particle_yielded(w, i); break;
         case 10: v = hypot(w->u[i], w->v[i]); break;
         case 11: v = w->surf[i]; break;
         case 12: v = w->mat[i] + 1; break;
