@@ -72,16 +72,16 @@ enum { SPH_GRAD_SYMMETRIC = 0, SPH_GRAD_DIFFERENCE = 1 };
 void sph_params_default(sph_params *p);
 
 /* Threads. A world runs threads OpenMP threads (sph_params.threads; 0, the default: one per
- * core the machine has, at most SPH_MAX_THREADS; sph.world{threads = n}). They wait
- * passively: the sph host sets OMP_WAIT_POLICY=passive when the environment does not say
- * (main.c; it executes itself again for it, as libgomp reads the variable only when it is
- * loaded). With libgomp's own default, threads spin at every barrier, and on a busy
- * machine a thread on every core spun the cores away from the work: the headline squeeze
- * (t_end = 0.05, two cores, two other busy processes) took 7-70 s instead of 0.7-0.9 s
- * passive. A program embedding libsph (or lua loading sph.so) chooses the policy itself:
- * set OMP_WAIT_POLICY=passive in its environment before it starts (a setenv in main is
- * too late), or give threads = 1 on a shared machine. OMP_WAIT_POLICY=active (or any value
- * set) in the host's environment is kept.
+ * core the machine has, at most SPH_MAX_THREADS; sph.world{threads = n}). At a barrier
+ * they spin briefly, then sleep: the sph host sets GOMP_SPINCOUNT=10000 when the
+ * environment sets neither it nor OMP_WAIT_POLICY (main.c; it executes itself again for
+ * it, as libgomp reads them only when it is loaded). libgomp's own long spin took a busy
+ * machine's cores from the work, sleeping at once (passive) pays a wake-up at each of a
+ * step's many short loops (the headline squeeze on two threads: 0.9 s bounded, 5.6 s
+ * passive). A program embedding libsph (or lua loading sph.so) chooses for itself: set
+ * GOMP_SPINCOUNT (or OMP_WAIT_POLICY) in its environment before it starts (a setenv in
+ * main is too late), or give threads = 1 on a shared machine. Either variable set in the
+ * host's environment is kept.
  *
  * OpenMP threads a world may ask for. A fixed bound, not a multiple of this machine's
  * cores, so a state saved on a large machine still loads on a small one; far beyond it
