@@ -547,6 +547,15 @@ static int w_run(lua_State *L) {
     double t0 = sph_lua_opt_number(L, 2, "run", "t0", sph_world_time(w)), wall0 = omp_get_wtime(), last = wall0;
     if (!isfinite(t0)) luaL_error(L, "bad argument to 'run' (t0: finite number expected)");
     double eps = 1e-9 * (until_t > 0 ? until_t : 1);
+    /* Times within eps count as the same time (a step lands on an output within eps), so
+     * outputs closer than that cannot be told apart; and t0 + k every, rounded, may stop
+     * advancing at all (every = 1e-300): each output's step would be 0 long, taken as an
+     * adaptive one, with each called at every step, for as many steps as until_t needs. */
+    if (every > 0 && every < eps) {
+        char why[160]; /* luaL_error has no %g */
+        snprintf(why, sizeof why, "every = %g is below the run's time resolution %g, 1e-9 of until_t", every, eps);
+        luaL_error(L, "bad argument to 'run' (%s)", why);
+    }
     long k = 1;
     if (every > 0 && sph_lua_opt_present(L, 2, "t0")) { /* the output a run from t0 would take next */
         double now = sph_world_time(w), kk = floor((now + eps - t0) / every);
@@ -573,6 +582,17 @@ static int w_run(lua_State *L) {
          * correction sat inside the pressure, a step 0.54 times the one before took the
          * force from 19 to -9). */
         double r = fmin(until_t, next_out) - now;
+        /* r <= 0 would make the step adaptive (dt <= 0), ignoring dt, and the output time
+         * would stay behind: an output grid that no longer advances in floating point */
+        if (!(r > 0)) {
+            char why[256];
+            snprintf(why, sizeof why,
+                     "the next output time %.17g is not after t = %.17g at step %ld (every = %g, t0 = %g: too fine "
+                     "an output interval for times this large)",
+                     next_out, now, sph_world_steps(w), every, t0);
+            if (show) fprintf(stderr, "\n");
+            luaL_error(L, "w:run: %s", why);
+        }
         if (dt >= r - eps) dt = r;
         else if (r < 1e6 * dt) dt = r / ceil(r / dt);
         if (sph_world_step(w, dt) < 0) {

@@ -427,6 +427,29 @@ T.case("run schedule", function()
   T.check(n == 0, "without every there are no outputs: each is not called, not even at the start")
 end)
 
+
+-- The fuzz (seed 1796185637, call 27049): at t = 0.02, t0 + k every with every = 1e-300
+-- rounds to t0 for every k, so each step's output time was already behind it; the step
+-- went adaptive (dt ignored) and each ran at every step, for millions of tiny steps here.
+T.case("run refuses an output interval below its time resolution", function()
+  local w = sph.world{ dx = 0.1, threads = 1, dt_max = 1e-8 } -- adaptive steps of 1e-8
+  w:fill{ rect = { 0, 0, 0.5, 0.5 }, material = sph.newtonian{ mu = 1 } }
+  w:plate{ rect = { -0.5, -0.3, 1, 0 } }
+  w:run{ until_t = 0.02, dt = 1e-3 }
+  local steps, n, c0 = w.steps, 0, os.clock()
+  T.checkerror("every = 1e-300 is below the run's time resolution", "every = 1e-300 at t = 0.02 is refused", w.run, w,
+               { until_t = w.t + 3e-5, dt = 1e-5, every = 1e-300, each = function() n = n + 1 end })
+  T.check(w.steps == steps and n == 0, "... before a step or an output", (w.steps - steps) .. " steps, " .. n .. " outputs")
+  T.below(os.clock() - c0, 0.1, "... at once (seconds)")
+  -- (each stops it after a few outputs, where the run would otherwise make 1e12 steps)
+  T.checkerror("below the run's time resolution", "every = 1e-12 with until_t = 1 is refused", w.run, w,
+               { until_t = 1, every = 1e-12, each = function() n = n + 1; if n > 10 then return false end end })
+  n, steps = 0, w.steps
+  -- an interval the run can tell apart: the fixed dt kept, each at the start and every step
+  w:run{ until_t = w.t + 3e-5, dt = 1e-5, every = 1e-5, each = function() n = n + 1 end }
+  T.check(w.steps == steps + 3 and n == 4, "every = dt = 1e-5 for 3e-5: 3 steps, 4 outputs",
+          (w.steps - steps) .. " steps, " .. n .. " outputs")
+end)
 T.case("files and closing", function()
   local w = sph.world{ dx = 0.1 }
   w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
