@@ -10,8 +10,8 @@
 -- height (the half sample's, default 0.5 and 1: a film started thin is width=1.6
 -- height=0.2), and the engine options density_correction and pressure_gradient (the
 -- thin-film options: at constant velocity pressure_gradient=difference, under a load
--- density_correction=gmres pressure_gradient=difference; README, Thin films), tol and
--- visc_tol (the pressure and viscous solves' relative residuals; docs/performance.md).
+-- density_correction=gmres pressure_gradient=difference; README, Thin films), tol (the
+-- relative residual of the pressure and viscous solves; docs/performance.md).
 -- Writes out/series.csv: t, h, plate velocity, plate force, solver iterations, max
 -- density error, and the lubrication reference (Newtonian: mu V / h^6 or h(t) under load).
 -- Its first row is the start, t = 0, before any step: no force is computed there yet, so
@@ -66,8 +66,7 @@ local SPEC = {
   { "shifting", "number", nil, "particle shifting coefficient (20)" },
   { "density_correction", { "passes", "gmres" }, nil, "engine option (docs/api.md)" },
   { "pressure_gradient", { "symmetric", "difference" }, nil, "engine option (docs/api.md)" },
-  { "tol", "number", nil, "pressure solve's relative residual" },
-  { "visc_tol", "number", nil, "viscous solve's relative residual" },
+  { "tol", "number", nil, "the pressure and viscous solves' relative residual" },
 }
 local o = params.args("squeeze", SPEC, ...) -- a bad parameter: named, exit 1
 
@@ -118,7 +117,7 @@ local out = o.out
 
 local world_opts = { threads = o.threads, viscosity = o.viscosity, shifting = o.shifting,
                      density_correction = o.density_correction, pressure_gradient = o.pressure_gradient,
-                     tol = o.tol, visc_tol = o.visc_tol }
+                     tol = o.tol }
 local height = o.height or 1
 local width = o.width or 0.5 * height
 -- the plates are sized for the sample spread to the gap h_min; the run ends at h_stop, by

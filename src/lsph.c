@@ -235,11 +235,14 @@ static const char *const REMOVED[][2] = {
     {"density_wait", "makes the passes the density error asks for at every step"},
     {"density_probe", "tries a later density pass after one that moved nothing on a loose solve first"},
     {"density_gradient", "moves the first density pass along whichever gradient lowers the error more"},
+    {"h", "takes the smoothing length h = dx (w.h reads it)"},
+    {"cfl", "limits dt to 0.25 h / max speed"},
+    {"visc_tol", "solves the implicit viscous step to tol, the pressure solve's tolerance"},
 };
 
 static int l_world(lua_State *L) {
-    static const char *const keys[] = {"dx", "h", "rho", "gravity", "viscosity", "shifting", "cfl", "dt_max",
-                                       "periodic", "symmetry", "threads", "tol", "visc_tol", "surface",
+    static const char *const keys[] = {"dx",        "rho",      "gravity", "viscosity", "shifting", "dt_max",
+                                       "periodic",  "symmetry", "threads", "tol",       "surface",
                                        "density_tol", "density_correction", "pressure_gradient", 0};
     luaL_checktype(L, 1, LUA_TTABLE);
     for (size_t k = 0; k < sizeof REMOVED / sizeof REMOVED[0]; k++)
@@ -251,10 +254,8 @@ static int l_world(lua_State *L) {
     sph_params_default(&p);
     if (!sph_lua_opt_present(L, 1, "dx")) luaL_error(L, "bad argument to 'world' (dx: number expected, got no value)");
     p.dx = sph_lua_opt_number(L, 1, "world", "dx", 0);
-    p.h = sph_lua_opt_number(L, 1, "world", "h", 0);
     p.rho0 = sph_lua_opt_number(L, 1, "world", "rho", 1);
     p.shifting = sph_lua_opt_number(L, 1, "world", "shifting", 0);
-    p.cfl = sph_lua_opt_number(L, 1, "world", "cfl", p.cfl);
     p.dt_max = sph_lua_opt_number(L, 1, "world", "dt_max", 0);
     /* checked as a double: converting one beyond int (threads = 1e20) is undefined */
     double threads = sph_lua_opt_number(L, 1, "world", "threads", 0);
@@ -265,7 +266,6 @@ static int l_world(lua_State *L) {
     }
     p.threads = (int)threads;
     p.tol = sph_lua_opt_number(L, 1, "world", "tol", p.tol);
-    p.visc_tol = sph_lua_opt_number(L, 1, "world", "visc_tol", p.visc_tol);
     p.surface_div = sph_lua_opt_number(L, 1, "world", "surface", p.surface_div);
     p.density_tol = sph_lua_opt_number(L, 1, "world", "density_tol", p.density_tol);
     if (!(p.shifting >= 0)) luaL_error(L, "bad argument to 'world' (shifting: number >= 0 expected)");
@@ -753,7 +753,7 @@ static int w_index(lua_State *L) {
     else if (!strcmp(k, "dt")) lua_pushnumber(L, sph_world_dt(lw->w));
     else if (!strcmp(k, "steps")) lua_pushinteger(L, sph_world_steps(lw->w));
     else if (!strcmp(k, "dx")) lua_pushnumber(L, sph_world_params(lw->w)->dx);
-    else if (!strcmp(k, "h")) lua_pushnumber(L, sph_world_params(lw->w)->h);
+    else if (!strcmp(k, "h")) lua_pushnumber(L, sph_world_h(lw->w));
     else if (!strcmp(k, "rho")) lua_pushnumber(L, sph_world_params(lw->w)->rho0);
     else {
         luaL_getmetatable(L, WORLD);

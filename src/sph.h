@@ -38,13 +38,12 @@ typedef enum { SPH_VISC_EXPLICIT = 0, SPH_VISC_IMPLICIT = 1 } sph_viscosity;
 /* The options a user chooses for a physical or a practical reason (sph.world{...},
  * docs/api.md); the scheme's numerical constants live in the file that uses them. */
 typedef struct sph_params {
-    double dx;             /* initial particle spacing (> 0)                       */
-    double h;              /* smoothing length (0: dx); kernel support 3h          */
+    double dx;             /* initial particle spacing (> 0); the smoothing length
+                              h is dx (sph_world_h)                                 */
     double rho0;           /* reference density                                    */
     double gravity[2];     /* body force per unit mass                             */
     sph_viscosity viscosity;
     double shifting;       /* particle-shifting coefficient, 0 = off              */
-    double cfl;            /* C_u: dt <= cfl h / max|u|                            */
     double dt_max;         /* upper bound on dt (0: none)                          */
     double dt_min;         /* a step below this is an error (0: 1e-12 * h)         */
     int periodic[2];       /* periodic in x / y                                    */
@@ -52,9 +51,9 @@ typedef struct sph_params {
     int symmetry[2];       /* mirror plane x = sym_at[0] / y = sym_at[1]           */
     double sym_at[2];
     int threads;           /* 0: all cores; at most SPH_MAX_THREADS (see "Threads") */
-    double tol;            /* pressure solver: relative residual; default 1e-6     */
-    double visc_tol;       /* implicit viscous solve: relative residual; default
-                              1e-6 (docs/performance.md: what looser costs)          */
+    double tol;            /* relative residual of every solve, the pressure's and
+                              the implicit viscous step's; default 1e-6
+                              (docs/performance.md: what looser costs)               */
     double surface_div;    /* free surface where div r < surface_div (2D: 2 full)  */
     double density_tol;    /* dt shrinks while the max density error exceeds this
                               (0: no control); default 0.005                        */
@@ -88,8 +87,8 @@ void sph_params_default(sph_params *p);
  * (threads = 100000) the OpenMP runtime overflowed its stack and crashed. */
 #define SPH_MAX_THREADS 256
 
-/* dx and h must lie in [SPH_MIN_LENGTH, SPH_MAX_LENGTH] (powers of them up to the fourth
- * stay normal doubles), and the particle mass rho dx^2 must be a normal number. */
+/* dx must lie in [SPH_MIN_LENGTH, SPH_MAX_LENGTH] (powers of it up to the fourth stay
+ * normal doubles), and the particle mass rho dx^2 must be a normal number. */
 #define SPH_MIN_LENGTH 1e-30
 #define SPH_MAX_LENGTH 1e30
 
@@ -104,6 +103,9 @@ int sph_world_save(sph_world *w, const char *file);
 sph_world *sph_world_load(const char *file, char *err, size_t errlen);
 const char *sph_world_error(const sph_world *w);
 const sph_params *sph_world_params(const sph_world *w);
+/* The smoothing length h: the spacing dx. The kernel reaches 3h, so plates must be at
+ * least 3h thick. */
+double sph_world_h(const sph_world *w);
 
 /* Real particles (fluid and walls) a world holds at most: fills, plates and sph.load
  * beyond it fail up front with the count asked for (2e8 is about 60 GB of arrays). */

@@ -18,10 +18,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define STATE_MAGIC "SPHSTAT7" /* 2: the density fallback's wait, 3: the later passes' wait, 4: the
+#define STATE_MAGIC "SPHSTAT8" /* 2: the density fallback's wait, 3: the later passes' wait, 4: the
                                   * last later pass stalled, 5: the last first pass's form (density.c),
                                   * 6: the solves' first guesses and multigrid hierarchies, 7: the
-                                  * numerical options and the later passes' wait gone */
+                                  * numerical options and the later passes' wait gone, 8: h, cfl and
+                                  * visc_tol gone from sph_params */
 
 typedef struct {
     char magic[8];
@@ -295,7 +296,7 @@ sph_world *sph_world_load(const char *file, char *err, size_t errlen) {
         fclose(r.f);
         return 0;
     }
-    w->par = par; /* as saved (sph_world_new fills in h and dt_min the same way) */
+    w->par = par; /* as saved (sph_world_new fills in dt_min the same way) */
     if (!(finite_nonneg(par.dt_min) && finite_nonneg(par.dt_max)))
         damaged(&r, "parameters: dt_min %g and dt_max %g must be finite and >= 0", par.dt_min, par.dt_max);
     if (rd(&r, &w->nmats, sizeof w->nmats, 1, "the material count") && (w->nmats < 0 || w->nmats > SPH_MAX_MATERIALS))

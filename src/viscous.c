@@ -384,7 +384,7 @@ int sph_viscous_implicit(sph_world *w, double dt) {
                               "out of memory or a coarse operator not positive definite", w->steps, w->t, nrows);
     sph_solver_vcycle(&w->solver, A); /* a V-cycle for these systems (solver.c) */
     sph_solve_result res[2];
-    sph_solver_pcg2(&w->solver, A, &V2, w->vb, w->vrhs, w->vsol, x2, w->par.visc_tol, SPH_SOLVE_MAX_ITER, w->threads,
+    sph_solver_pcg2(&w->solver, A, &V2, w->vb, w->vrhs, w->vsol, x2, w->par.tol, SPH_SOLVE_MAX_ITER, w->threads,
                     res);
     for (int comp = 0; comp < 2; comp++) {
         if (!res[comp].converged)
@@ -392,7 +392,7 @@ int sph_viscous_implicit(sph_world *w, double dt) {
                                   "viscous solver (%s) did not converge at step %ld (t = %g, dt = %g): "
                                   "relative residual %.3g after %d iterations (tolerance %g, %d unknowns)",
                                   comp ? "v" : "u", w->steps, w->t, dt, res[comp].residual, res[comp].iterations,
-                                  w->par.visc_tol, nrows);
+                                  w->par.tol, nrows);
         iters += res[comp].iterations;
         if (res[comp].residual > resid) resid = res[comp].residual;
     }

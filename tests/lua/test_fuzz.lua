@@ -92,9 +92,8 @@ local function material()
   return sph.newtonian{ mu = number() }
 end
 
-local WORLD_KEYS = { "h", "rho", "gravity", "viscosity", "shifting", "cfl", "dt_max", "periodic", "symmetry",
-                     "threads", "tol", "visc_tol", "surface", "density_tol", "density_correction",
-                     "pressure_gradient" }
+local WORLD_KEYS = { "rho", "gravity", "viscosity", "shifting", "dt_max", "periodic", "symmetry",
+                     "threads", "tol", "surface", "density_tol", "density_correction", "pressure_gradient" }
 local WORLD_GEN = {
   gravity = function() return { 0, pick{ 0, -1, -10 } } end,
   threads = function() return pick{ 1, 1, 2, 0, -1, 257, 2.5 } end,

@@ -45,14 +45,16 @@ T.case("headline squeeze script, a thin gap", function()
 end)
 
 T.case("headline squeeze script, the solver options reach the engine", function()
-  local text, code = run("mode=velocity Re=10 Bn=0.5 M=100 dx=0.05 t_end=0.005 tol=1e-7 visc_tol=1e-7")
-  T.check(code == 0, "squeeze.lua runs with tol=1e-7 visc_tol=1e-7", text)
-  text, code = run("mode=velocity Re=10 Bn=0.5 M=100 dx=0.05 t_end=0.005 visc_tol=2")
-  T.check(code == 1 and text:find("visc_tol must be in (0, 1)", 1, true) ~= nil,
-          "squeeze.lua with visc_tol=2 exits 1 naming visc_tol", text)
+  local text, code = run("mode=velocity Re=10 Bn=0.5 M=100 dx=0.05 t_end=0.005 tol=1e-7")
+  T.check(code == 0, "squeeze.lua runs with tol=1e-7", text)
+  text, code = run("mode=velocity Re=10 Bn=0.5 M=100 dx=0.05 t_end=0.005 tol=2")
+  T.check(code == 1 and text:find("tol must be in (0, 1)", 1, true) ~= nil,
+          "squeeze.lua with tol=2 exits 1 naming tol", text)
   -- a removed engine option is no parameter of the script
   text, code = run("mode=velocity Re=10 Bn=0.5 M=100 dx=0.05 t_end=0.005 dt_growth=eased")
   T.check(code == 1 and text:find("dt_growth", 1, true) ~= nil, "squeeze.lua with dt_growth=eased exits 1 naming dt_growth", text)
+  text, code = run("mode=velocity Re=10 Bn=0.5 M=100 dx=0.05 t_end=0.005 visc_tol=1e-7")
+  T.check(code == 1 and text:find("visc_tol", 1, true) ~= nil, "squeeze.lua with visc_tol=1e-7 exits 1 naming visc_tol", text)
 end)
 
 -- Early endings say why, with a status that is not 0 (issue 27 D): h_stop before t_end
