@@ -95,6 +95,14 @@ stability: all
 validate: all
 	$(B)/sph scripts/validate.lua $(if $(threads),threads=$(threads))
 
+# the seed paper's Figures 3-7 (../shared/paper), next to the references of
+# ../shared/REFERENCES.md: docs/paper.md and docs/paper/fig3.png ... fig7.png (the Figure 5
+# grid and its animations). make paper: dx = 1/20 and 1/40 (a few minutes on one thread);
+# make paper quick=1: dx = 1/20, shorter constant-velocity runs (about half a minute).
+# n=20,40 and threads=1 pass through (scripts/paper.lua says the rest).
+paper: all
+	$(B)/sph scripts/paper.lua $(if $(quick),quick=$(quick)) $(if $(n),n=$(n)) $(if $(threads),threads=$(threads))
+
 # The headers a C user needs: sph.h (the engine, C library only) and sph_pictures.h (render,
 # plot, animate; plain data in, PNG out: link with cairo). pictures_cairo.h is internal.
 PUBLIC_HEADERS := src/sph.h src/sph_pictures.h
@@ -118,6 +126,7 @@ LUA_FILES      := $(wildcard lua/sph/*.lua)
 SCRIPT_FILES   := $(wildcard scripts/*.lua)
 EXAMPLE_FILES  := $(wildcard examples/*.lua examples/*.c examples/README.md)
 DOC_FILES      := $(wildcard docs/*.md docs/*.png)
+PAPER_FILES    := $(wildcard docs/paper/*.png)
 D := $(DESTDIR)
 install: all
 	install -d $(D)$(bindir) $(D)$(libdir) $(D)$(includedir) $(D)$(pkgconfigdir) $(D)$(luacdir) \
@@ -139,6 +148,7 @@ install: all
 	$(if $(EXAMPLE_FILES),install -m 644 $(EXAMPLE_FILES) $(D)$(sharedir)/examples/)
 	install -m 644 README.md $(D)$(docdir)/README.md
 	install -m 644 $(DOC_FILES) $(D)$(docdir)/docs/
+	$(if $(PAPER_FILES),install -d $(D)$(docdir)/docs/paper && install -m 644 $(PAPER_FILES) $(D)$(docdir)/docs/paper/)
 
 uninstall:
 	rm -f $(D)$(bindir)/sph $(addprefix $(D)$(includedir)/,$(notdir $(PUBLIC_HEADERS))) \
@@ -148,11 +158,12 @@ uninstall:
 	rm -f $(addprefix $(D)$(sharedir)/scripts/,$(notdir $(SCRIPT_FILES)))
 	rm -f $(addprefix $(D)$(sharedir)/examples/,$(notdir $(EXAMPLE_FILES)))
 	rm -f $(D)$(docdir)/README.md $(addprefix $(D)$(docdir)/docs/,$(notdir $(DOC_FILES)))
+	rm -f $(addprefix $(D)$(docdir)/docs/paper/,$(notdir $(PAPER_FILES)))
 	for d in $(D)$(luadir)/sph $(D)$(sharedir)/scripts $(D)$(sharedir)/examples $(D)$(sharedir) \
-	         $(D)$(docdir)/docs $(D)$(docdir); do [ ! -d "$$d" ] || rmdir "$$d" 2>/dev/null || true; done
+	         $(D)$(docdir)/docs/paper $(D)$(docdir)/docs $(D)$(docdir); do [ ! -d "$$d" ] || rmdir "$$d" 2>/dev/null || true; done
 
 clean:
 	rm -rf build build-san
 
-.PHONY: all test check bench stability validate install uninstall clean
+.PHONY: all test check bench stability validate paper install uninstall clean
 -include $(wildcard $(B)/*.d)
