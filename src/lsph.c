@@ -519,6 +519,73 @@ static int call_each(lua_State *L, int each, sph_world **w) {
     return stop;
 }
 
+/* What w:run's steps share with the hook the engine calls before each step. */
+typedef struct {
+    lua_State *L;
+    int show;            /* a progress line on stderr                                */
+    double until_t, wall0, last;
+    int stepped;         /* steps the current sph_world_run_until call has taken       */
+    int raised;          /* the hook raised a Lua error: its value is on the stack    */
+} run_state;
+
+/* After every step: the progress line (at most every 0.25 s), then an interrupt the host
+ * caught ends the run with a Lua error. */
+static void after_step(lua_State *L, sph_world *w, run_state *r) {
+    if (r->show && omp_get_wtime() - r->last > 0.25) {
+        progress(w, r->until_t, r->wall0, 0);
+        r->last = omp_get_wtime();
+    }
+    if (sph_lua_interrupt) {
+        if (r->show) progress(w, r->until_t, r->wall0, 1);
+        check_interrupt(L, w);
+    }
+}
+
+/* The hook's body, called protected (run_hook) with the world at index 1 and the
+ * run_state at 2: the last step's after_step, then the plate laws for the next one. */
+static int run_hook_body(lua_State *L) {
+    run_state *r = lua_touserdata(L, 2);
+    sph_world *w = world_after_call(L, 1, "w:run (in a plate law)");
+    if (r->stepped++) after_step(L, w, r);
+    apply_laws(L, 1, sph_world_time(w), "w:run (in a plate law)");
+    return 0;
+}
+
+/* sph_world_run_until's hook (w_run is the running C function: the world at index 1). A
+ * Lua error (a law that raises, a closed world, an interrupt) stops the run, its value
+ * left on the stack for w_run to raise once the engine has returned. */
+static int run_hook(sph_world *w, void *ctx) {
+    (void)w;
+    run_state *r = ctx;
+    lua_State *L = r->L;
+    lua_pushcfunction(L, run_hook_body);
+    lua_pushvalue(L, 1);
+    lua_pushlightuserdata(L, r);
+    if (lua_pcall(L, 2, 0, 0) == LUA_OK) return 0;
+    r->raised = 1;
+    return 1;
+}
+
+/* The index k >= kmin of the first output time t0 + k every after now (beyond the clock's
+ * round-off eps). A grid finer than the clock resolves there is a Lua error: its output
+ * times cannot be landed on one by one. */
+static long next_output(lua_State *L, double t0, double every, double now, double eps, long kmin) {
+    double kk = floor((now + eps - t0) / every);
+    char msg[160];
+    if (!(kk < 1e15)) {
+        snprintf(msg, sizeof msg, "every = %g: %g output times from t0 = %g to now", every, kk, t0);
+        luaL_error(L, "bad argument to 'run' (%s)", msg);
+    }
+    long k = kk < kmin ? kmin : (long)kk;
+    while (k > kmin && t0 + (k - 1) * every > now + eps) k--;
+    for (int q = 0; q < 4 && t0 + k * every <= now + eps; q++) k++; /* round-off only */
+    if (t0 + k * every <= now + eps) {
+        snprintf(msg, sizeof msg, "every = %g: output times closer than the clock resolves at t = %g", every, now);
+        luaL_error(L, "bad argument to 'run' (%s)", msg);
+    }
+    return k;
+}
+
 static int w_run(lua_State *L) {
     lworld *lw = check_world(L, 1);
     static const char *const keys[] = {"until_t", "every", "each", "progress", "dt", "t0", 0};
@@ -529,7 +596,7 @@ static int w_run(lua_State *L) {
     double every = sph_lua_opt_number(L, 2, "run", "every", 0);
     double fixed_dt = sph_lua_opt_number(L, 2, "run", "dt", 0);
     if (!(every >= 0)) luaL_error(L, "bad argument to 'run' (every: number >= 0 expected)");
-    if (!isfinite(fixed_dt)) { /* else an infinite dt is cut to the output interval below */
+    if (!isfinite(fixed_dt)) { /* else an infinite dt is cut to the output interval */
         char got[32];
         snprintf(got, sizeof got, "%g", fixed_dt);
         luaL_error(L, "bad argument to 'run' (dt must be a finite positive number (or 0: adaptive), got %s)", got);
@@ -538,32 +605,23 @@ static int w_run(lua_State *L) {
     if (t != LUA_TNIL && t != LUA_TFUNCTION)
         luaL_error(L, "bad argument to 'run' (each: function expected, got %s)", luaL_typename(L, -1));
     int each = lua_gettop(L);
-    int show = isatty(fileno(stderr));
-    if (lua_getfield(L, 2, "progress") != LUA_TNIL) show = show && lua_toboolean(L, -1);
+    run_state r = {L, isatty(fileno(stderr)), until_t, omp_get_wtime(), 0, 0, 0};
+    r.last = r.wall0;
+    if (lua_getfield(L, 2, "progress") != LUA_TNIL) r.show = r.show && lua_toboolean(L, -1);
     lua_pop(L, 1);
     sph_world *w = lw->w;
     /* t0: the output grid's origin (default now); a run continued from a saved state passes
      * the first run's, so the outputs fall, and the steps land, where they did in it */
-    double t0 = sph_lua_opt_number(L, 2, "run", "t0", sph_world_time(w)), wall0 = omp_get_wtime(), last = wall0;
+    double t0 = sph_lua_opt_number(L, 2, "run", "t0", sph_world_time(w));
     if (!isfinite(t0)) luaL_error(L, "bad argument to 'run' (t0: finite number expected)");
-    double eps = 1e-9 * (until_t > 0 ? until_t : 1);
-    /* Times within eps count as the same time (a step lands on an output within eps), so
-     * outputs closer than that cannot be told apart; and t0 + k every, rounded, may stop
-     * advancing at all (every = 1e-300): each output's step would be 0 long, taken as an
-     * adaptive one, with each called at every step, for as many steps as until_t needs. */
-    if (every > 0 && every < eps) {
-        char why[160]; /* luaL_error has no %g */
-        snprintf(why, sizeof why, "every = %g is below the run's time resolution %g, 1e-9 of until_t", every, eps);
-        luaL_error(L, "bad argument to 'run' (%s)", why);
+    double eps = 1e-9 * (until_t > 0 ? until_t : 1); /* the clock's round-off */
+    if (every > 0 && every < eps) { /* each output time is landed on: steps below round-off */
+        char msg[128];
+        snprintf(msg, sizeof msg, "every = %g is below the run's time resolution %g, 1e-9 of until_t", every, eps);
+        luaL_error(L, "bad argument to 'run' (%s)", msg);
     }
-    long k = 1;
-    if (every > 0 && sph_lua_opt_present(L, 2, "t0")) { /* the output a run from t0 would take next */
-        double now = sph_world_time(w), kk = floor((now + eps - t0) / every);
-        if (!(kk < 1e15)) luaL_error(L, "bad argument to 'run' (t0: %g outputs before now)", kk);
-        k = kk < 1 ? 1 : (long)kk;
-        while (k > 1 && t0 + (k - 1) * every > now + eps) k--;
-        while (t0 + k * every <= now + eps) k++;
-    }
+    /* the output a run from t0 would take next */
+    long k = every > 0 ? next_output(L, t0, every, sph_world_time(w), eps, 1) : 1;
     double next_out = every > 0 ? t0 + k * every : INFINITY;
     /* the output at the grid's origin, before the first step: a series gets its t0 row.
      * A run continued past t0 (t0 given, earlier than now) had it in the run before. */
@@ -571,49 +629,26 @@ static int w_run(lua_State *L) {
         lua_pushvalue(L, 1);
         return 1;
     }
+    /* to each output time in turn (the engine lands on it), then its each */
     while (sph_world_time(w) < until_t - eps) {
-        double now = sph_world_time(w);
-        w = apply_laws(L, 1, now, "w:run (in a plate law)");
-        double dt = fixed_dt > 0 ? fixed_dt : sph_world_next_dt(w);
-        /* Land on the next output time by spreading the remaining interval evenly over the
-         * steps it needs, rather than cutting the last step short: the pressure source
-         * div u* / dt carries the divergence the approximate projection left in u^n, so a
-         * step much shorter than the one before shows in the plate force (while the density
-         * correction sat inside the pressure, a step 0.54 times the one before took the
-         * force from 19 to -9). */
-        double r = fmin(until_t, next_out) - now;
-        /* r <= 0 would make the step adaptive (dt <= 0), ignoring dt, and the output time
-         * would stay behind: an output grid that no longer advances in floating point */
-        if (!(r > 0)) {
-            char why[256];
-            snprintf(why, sizeof why,
-                     "the next output time %.17g is not after t = %.17g at step %ld (every = %g, t0 = %g: too fine "
-                     "an output interval for times this large)",
-                     next_out, now, sph_world_steps(w), every, t0);
-            if (show) fprintf(stderr, "\n");
-            luaL_error(L, "w:run: %s", why);
-        }
-        if (dt >= r - eps) dt = r;
-        else if (r < 1e6 * dt) dt = r / ceil(r / dt);
-        if (sph_world_step(w, dt) < 0) {
-            if (show) fprintf(stderr, "\n");
+        int rc = sph_world_run_until(w, fmin(until_t, next_out), fixed_dt, run_hook, &r);
+        if (r.raised) return lua_error(L);
+        if (rc < 0) {
+            if (r.show) fprintf(stderr, "\n");
             return engine_error(L, w);
         }
+        int stepped = r.stepped;
+        r.stepped = 0;
         if (sph_world_time(w) >= next_out - eps) {
-            k++;
+            k = next_output(L, t0, every, sph_world_time(w), eps, k + 1);
             next_out = t0 + k * every;
             if (call_each(L, each, &w)) break;
+        } else if (!stepped) {
+            break; /* neither a step nor an output: the time is at until_t within round-off */
         }
-        if (show && omp_get_wtime() - last > 0.25) {
-            progress(w, until_t, wall0, 0);
-            last = omp_get_wtime();
-        }
-        if (sph_lua_interrupt) { /* after the step's output, if it was an output time */
-            if (show) progress(w, until_t, wall0, 1);
-            check_interrupt(L, w);
-        }
+        if (stepped) after_step(L, w, &r); /* after the step's output, if it was an output time */
     }
-    if (show) progress(w, until_t, wall0, 1);
+    if (r.show) progress(w, until_t, r.wall0, 1);
     lua_pushvalue(L, 1);
     return 1;
 }

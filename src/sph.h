@@ -149,6 +149,16 @@ void sph_plate_rect(const sph_world *w, int plate, double rect[4]);
  * sph_world_step(w, dt): one step of the given dt (<= 0: adaptive). */
 double sph_world_next_dt(sph_world *w);
 int sph_world_step(sph_world *w, double dt);
+/* Steps until the time is t_end and lands on it exactly (sph_world_time(w) == t_end).
+ * Each step is dt (<= 0: the adaptive sph_world_next_dt), and the interval left is spread
+ * evenly over the steps it needs rather than the last step cut short (a much shorter step
+ * shows in the plate force; run.c). before_step, when not NULL, runs before every step
+ * (a plate law is set there); a nonzero return stops the run before that step. Returns 0
+ * at t_end (no step when the time is already there or past it, within 1e-9 t_end), 1 when
+ * before_step stopped it, -1 with a message in sph_world_error() (a failed step's, or a
+ * t_end or dt that is not finite). */
+typedef int (*sph_step_hook)(sph_world *w, void *ctx);
+int sph_world_run_until(sph_world *w, double t_end, double dt, sph_step_hook before_step, void *ctx);
 double sph_world_time(const sph_world *w);
 double sph_world_dt(const sph_world *w);
 long sph_world_steps(const sph_world *w);

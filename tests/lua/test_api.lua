@@ -430,6 +430,12 @@ T.case("run schedule", function()
   n = 0
   w:run{ until_t = 0.1, each = function() n = n + 1 end }
   T.check(n == 0, "without every there are no outputs: each is not called, not even at the start")
+  -- every output time is landed on: a grid finer than the clock's round-off is refused
+  T.checkerror("every = 1e-300 is below the run's time resolution", "run with every = 1e-300", w.run, w,
+               { until_t = 0.2, every = 1e-300, progress = false })
+  T.checkerror("output times from t0 = -1e+300 to now", "run with t0 = -1e300", w.run, w,
+               { until_t = 0.2, every = 0.01, t0 = -1e300, progress = false })
+  T.check(w.t == 0.1, "the refused runs took no step", w.t)
 end)
 
 
