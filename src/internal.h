@@ -319,14 +319,14 @@ void sph_plate_contact(sph_world *w);
 
 /* physics passes (viscous.c, pressure.c) */
 void sph_viscous_rheology(sph_world *w);
-/* The traction-free free surface (viscous.c) is carried for a Newtonian fluid particle
- * with the symmetric pressure gradient (the default); elsewhere the surface holds p = 0. */
 /* The stress magnitude |tau| = eta gammadot of fluid particle i, and whether it has
  * yielded, |tau| > tau0: the one definition behind w:field, the statistics and the files. */
 static inline double sph_particle_stress(const sph_world *w, int i) { return w->eta[i] * w->gd[i]; }
 static inline int sph_particle_yielded(const sph_world *w, int i) {
     return sph_particle_stress(w, i) > w->mats[w->mat[i]].tau0;
 }
+/* The traction-free free surface (viscous.c) is carried for a Newtonian fluid particle
+ * with the symmetric pressure gradient (the default); elsewhere the surface holds p = 0. */
 static inline int sph_surface_traction(const sph_world *w, int i) {
     return w->mats[w->mat[i]].model == SPH_NEWTONIAN && w->par.pressure_gradient == SPH_GRAD_SYMMETRIC;
 }

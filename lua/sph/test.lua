@@ -61,6 +61,21 @@ function T.loglog_slope(xs, ys)
   return (n * sxy - sx * sy) / (n * sxx - sx * sx)
 end
 
+-- Runs a shell command: its stdout and stderr together, and its exit status.
+function T.sh(cmd)
+  local p = assert(io.popen(cmd .. " 2>&1; echo \"exit=$?\""))
+  local text = p:read("a")
+  p:close()
+  return text, tonumber(text:match("exit=(%d+)%s*$"))
+end
+
+-- Runs scripts/<name> with the sph host running this test (arg[-1]), from the checkout
+-- this test file is in: T.sh's text and status.
+function T.script(name, args)
+  local top = arg[0]:match("^(.*)/tests/lua/[^/]+$") or "."
+  return T.sh(("%s %s/scripts/%s %s"):format(arg[-1], top, name, args))
+end
+
 function T.failed() return failed end
 
 -- Exit status for the end of a test file.

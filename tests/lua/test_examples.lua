@@ -23,12 +23,7 @@ local EXAMPLES = {
   { "poiseuille", { "profile.csv", "u.png" } },
 }
 
-local function sh(cmd)
-  local p = assert(io.popen(cmd .. " 2>&1; echo \"exit=$?\""))
-  local text = p:read("a")
-  p:close()
-  return text, tonumber(text:match("exit=(%d+)%s*$"))
-end
+local sh = T.sh
 
 local function read(file)
   local f = io.open(file, "rb")

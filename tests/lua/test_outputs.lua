@@ -438,14 +438,9 @@ end)
 -- The headline script's defaults: frames, the animation, h.png and force.png besides the
 -- series; frames=0 plots=0 the series alone; vtu=N the ParaView files and their series.
 T.case("the headline script's default outputs", function()
-  local top = arg[0]:match("^(.*)/tests/lua/[^/]+$") or "."
   local dir = tmp("squeeze")
   local function run(args, out)
-    local p = io.popen(string.format("%s %s/scripts/squeeze.lua mode=velocity Re=10 Bn=0.5 M=100 dx=0.05 t_end=0.4 every=0.01 threads=1 out=%s %s 2>&1; echo \"exit=$?\"",
-      arg[-1], top, out, args))
-    local text = p:read("a")
-    p:close()
-    return text, tonumber(text:match("exit=(%d+)"))
+    return T.script("squeeze.lua", ("mode=velocity Re=10 Bn=0.5 M=100 dx=0.05 t_end=0.4 every=0.01 threads=1 out=%s %s"):format(out, args))
   end
   local function exists(f)
     local g = io.open(f, "rb")

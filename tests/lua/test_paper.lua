@@ -2,16 +2,8 @@
 -- a case: check=1 prints the plan and exits 0; a bad value or an unknown name exits 1 with a
 -- message naming it. (The runs themselves take half a minute and more: make paper quick=1.)
 local T = require "sph.test"
-local sph_bin = arg[-1]
-local top = arg[0]:match("^(.*)/tests/lua/[^/]+$") or "."
 
-local function run(args)
-  local cmd = string.format("%s %s/scripts/paper.lua %s 2>&1; echo \"exit=$?\"", sph_bin, top, args)
-  local p = assert(io.popen(cmd))
-  local text = p:read("a")
-  p:close()
-  return text, tonumber(text:match("exit=(%d+)"))
-end
+local function run(args) return T.script("paper.lua", args) end
 
 T.case("paper.lua parameters", function()
   local text, code = run("check=1")

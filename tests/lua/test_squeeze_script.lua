@@ -11,13 +11,7 @@ local top = arg[0]:match("^(.*)/tests/lua/[^/]+$") or "."
 local dir = os.tmpname()
 os.remove(dir)
 
-local function run(args)
-  local cmd = string.format("%s %s/scripts/squeeze.lua %s out=%s threads=1 2>&1; echo \"exit=$?\"", sph_bin, top, args, dir)
-  local p = assert(io.popen(cmd))
-  local text = p:read("a")
-  p:close()
-  return text, tonumber(text:match("exit=(%d+)"))
-end
+local function run(args) return T.script("squeeze.lua", ("%s out=%s threads=1"):format(args, dir)) end
 
 local function lines(file)
   local n = 0

@@ -3,18 +3,10 @@
 -- series row, the plot exists, and the Slurm script is an array of 4 tasks, one line of
 -- jobs.txt each. A run that fails is counted and makes the sweep exit 1.
 local T = require "sph.test"
-local sph_bin = arg[-1]
-local top = arg[0]:match("^(.*)/tests/lua/[^/]+$") or "."
 local dir = os.tmpname()
 os.remove(dir)
 
-local function run(args)
-  local cmd = string.format("%s %s/scripts/sweep.lua %s 2>&1; echo \"exit=$?\"", sph_bin, top, args)
-  local p = assert(io.popen(cmd))
-  local text = p:read("a")
-  p:close()
-  return text, tonumber(text:match("exit=(%d+)"))
-end
+local function run(args) return T.script("sweep.lua", args) end
 
 local function read(file)
   local f = io.open(file)
