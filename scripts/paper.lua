@@ -75,23 +75,10 @@ assert(sph.mkdir(figdir))
 local clock0 = os.time()
 
 ---------------------------------------------------------------------------------------
--- References (../shared/REFERENCES.md), all plane strain, forces for the whole sample.
--- Section 1: FE creeping force F_v of the rectangle of the same area (A = 1) at gap h, for
--- Bn = 0, 10; section 3: the rigid-plastic limit load F_tau,y(h) (FE, +-0.5 %).
-local HS = { 1, 0.8, 0.6, 0.5, 0.4, 0.3 }
-local FV = { [0] = { 5.2493, 10.2585, 32.013, 77.721, 261.59, 1386.6 },
-             [10] = { 26.806, 40.556, 84.006, 156.13, 398.24, 1684.6 } }
-local FTY = { 2.015, 2.762, 4.82, 7.06, 11.70, 23.7 }
--- piecewise log-log interpolation in the table (h from 1 down to 0.3; nil outside)
-local function interp(tab, h)
-  if h > HS[1] + 1e-9 or h < HS[#HS] - 1e-9 then return nil end
-  for k = 1, #HS - 1 do
-    if h <= HS[k] + 1e-9 and h >= HS[k + 1] - 1e-9 then
-      local s = math.log(tab[k + 1] / tab[k]) / math.log(HS[k + 1] / HS[k])
-      return tab[k] * (h / HS[k]) ^ s
-    end
-  end
-end
+-- References (sph.references: REFERENCES.md sections 1 and 3, whole-sample forces): the
+-- FE creeping force at Bn = 0 and 10 over the gap, and the rigid-plastic limit load.
+local refs = require "sph.references"
+local FV, FTY, interp = { [0] = refs.FV[0], [10] = refs.FV[10] }, refs.FTY, refs.interp
 -- The plate force at V = -1 in creeping flow: FE at Bn = 0 and 10; otherwise the estimate
 -- F_v(Bn = 0) + Bn F_tau,y (viscous plus plastic), which at Bn = 10 is 4-7 % below FE's
 -- rectangle (h = 1: 25.4 vs 26.8; 0.8: 37.9 vs 40.6; 0.5: 148.3 vs 156.1; 0.3: 1624 vs 1685).
@@ -105,12 +92,7 @@ local function yield_load(Bn) return Bn * FTY[1] end -- the square's limit load,
 -- 3 %; barrelling ignored); nil when |F| is below the square's limit load (no flow)
 local function stop_height(Bn, F)
   if math.abs(F) <= yield_load(Bn) then return nil end
-  local lo, hi = 0.05, 1
-  for _ = 1, 100 do
-    local h = 0.5 * (lo + hi)
-    if Bn * (1 / (2 * h ^ 3) + 1.5 / h) > math.abs(F) then lo = h else hi = h end
-  end
-  return 0.5 * (lo + hi)
+  return refs.plastic_height(Bn, F)
 end
 
 local function clean(e)

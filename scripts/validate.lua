@@ -85,10 +85,11 @@ local timing = {} -- { section, seconds }
 -- REFERENCES.md section 1: F_v at h = 1 and of the rectangle of the same area at h = 0.8
 -- (ln F close to linear in ln h between them: the reference at the current gap), and the
 -- unyielded area fraction at h = 1 (FE, not mesh-converged at Bn = 10: 0.11-0.13).
+local refs = require "sph.references"
 local REF = {
-  { Bn = 0, f1 = 5.2493, f8 = 10.2585, unyielded = 0 },
-  { Bn = 10, f1 = 26.806, f8 = 40.556, unyielded = 0.12 },
-  { Bn = 1000, f1 = 2023, f8 = 2796.0, unyielded = 0.50 },
+  { Bn = 0, f1 = refs.FV[0][1], f8 = refs.FV[0][2], unyielded = 0 },
+  { Bn = 10, f1 = refs.FV[10][1], f8 = refs.FV[10][2], unyielded = 0.12 },
+  { Bn = 1000, f1 = refs.FV[1000][1], f8 = refs.FV[1000][2], unyielded = 0.50 },
 }
 
 -- mean F / F_FE(h) over t in (0.005, 0.02), after the impulsive start's transient
@@ -262,16 +263,9 @@ end
 -- compressing), from t = 0 to t = 1. References: under 0.75 F_y the sample only creeps,
 -- h(1) > 0.98 (V of order 1e-3 or less); under 1.5 F_y it slows down near h*, where
 -- Bn F_tau,y(h*) = load with F_tau,y(h) ~ 1/(2 h^3) + 1.5/h (within 3 %; barrelling ignored).
-local YIELD = { Bn = 10, M = 800, Re = 1, Fty1 = 2.015, t_end = 1 }
+local YIELD = { Bn = 10, M = 800, Re = 1, Fty1 = refs.FTY[1], t_end = 1 }
 YIELD.Fy = YIELD.Bn * YIELD.Fty1
-local function yield_height(F) -- Bn (1/(2h^3) + 1.5/h) = F, by bisection (the left side falls with h)
-  local lo, hi = 0.05, 2
-  for _ = 1, 100 do
-    local h = 0.5 * (lo + hi)
-    if YIELD.Bn * (1 / (2 * h ^ 3) + 1.5 / h) > F then lo = h else hi = h end
-  end
-  return 0.5 * (lo + hi)
-end
+local function yield_height(F) return refs.plastic_height(YIELD.Bn, F) end
 
 local function yield_run(rec, frac, n)
   local dx = 1 / n
@@ -291,9 +285,10 @@ end
 local function section3()
   local nl = numbers(opt.yield_n or "20,40,80")
   local hstar = yield_height(1.5 * YIELD.Fy)
-  -- the table's F_tau,y(h) interpolated log-log between h = 0.8 (2.762) and 0.6 (4.82)
-  local slope = math.log(4.82 / 2.762) / math.log(0.6 / 0.8)
-  local htab = 0.8 * (1.5 * YIELD.Fty1 / 2.762) ^ (1 / slope)
+  -- the table's F_tau,y(h) interpolated log-log between h = 0.8 and 0.6
+  local H, T = refs.HS, refs.FTY
+  local slope = math.log(T[3] / T[2]) / math.log(H[3] / H[2])
+  local htab = H[2] * (1.5 * YIELD.Fty1 / T[2]) ^ (1 / slope)
   local cases = {
     { frac = 0.75, label = "0.75 F_y", ref = "> 0.98 (creep only)", err_name = "1 - h(1)",
       err = function(h) return 1 - h end },
