@@ -32,7 +32,8 @@
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC optimize("align-loops=64", "align-functions=64")
 #endif
-#include "internal.h"
+#include "linalg.h"
+#include "sph.h"
 
 #include <math.h>
 #include <omp.h>

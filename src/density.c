@@ -420,7 +420,7 @@ static int density_gmres(sph_world *w) {
             }
             y[r] = -beta * H[0][r];
         }
-        sph_pressure_dense_solve(m, &a[0][0], MAX_GMRES, y);
+        sph_dense_solve(m, &a[0][0], MAX_GMRES, y);
         /* the error left, e + B V y = V_{0..m} g with g = beta e_1 + Hbar y */
         double g[MAX_GMRES + 1], gg = 0.0, maxe = 0.0;
         for (int q = 0; q <= m; q++) {

@@ -1,5 +1,6 @@
 /* Walls and plates: rigid rectangles filled with wall particles on the fluid's lattice,
- * fixed or moving along one axis under a velocity law or a load law. No-slip follows
+ * fixed or moving along one axis under a velocity law or a load law; the forces the fluid
+ * puts on them and the loaded plates' equation of motion. No-slip follows
  * Morris, Fox & Zhu (1997): a wall particle B seen from fluid particle a carries the
  * velocity u_B = u_w - (d_B / d_a)(u_a - u_w), so u_a - u_B = beta (u_a - u_w) with
  * beta = 1 + d_B / d_a. Morris clamps beta at 1.5; that clamp, which binds for every wall
@@ -12,6 +13,7 @@
 #include "kernel.h"
 
 #include <math.h>
+#include <string.h>
 
 int sph_plate_fill(sph_world *w, const double rect[4], int axis) {
     const sph_params *P = &w->par;
@@ -251,4 +253,106 @@ int sph_plate_check_escape(sph_world *w) {
         }
     }
     return 0;
+}
+
+/* Fluid pressure force on every plate along its axis, for a pressure field p (ghosts
+ * synced): F = sum_{a fluid, B in plate} m_a m_B (p_a / rho_a^2 + p_B / rho_B^2) grad_a W. */
+void sph_plate_pressure_force(const sph_world *w, const double *p, double *out) {
+    int n = w->n, np = w->nplates;
+    double f[SPH_MAX_PLATES] = {0};
+#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : f[:SPH_MAX_PLATES])
+    for (int i = 0; i < n; i++) {
+        if (w->kind[i] != SPH_FLUID) continue;
+        double pi = p[i] / (w->rho[i] * w->rho[i]);
+        for (int k = w->nb_mid[i]; k < w->nb_start[i + 1]; k++) { /* walls */
+            int j = w->nb_j[k], pk = w->kind[j];
+            if (w->plates[pk].axis < 0) continue;
+            double c = w->m[i] * w->m[j] * (pi + p[j] / (w->rho[j] * w->rho[j]));
+            f[pk] += w->plates[pk].axis == 0 ? c * w->nb_gx[k] * w->gsx[j] : c * w->nb_gy[k] * w->gsy[j];
+        }
+    }
+    for (int k = 0; k < np; k++) out[k] = f[k] * (w->plates[k].doubled ? 2.0 : 1.0);
+}
+
+/* The loaded plates' equations of motion M (V - V^n) / dt = F_load + F_visc + F_p(V), with
+ * the fluid's pressure force linear in the velocities, F_p = F0 + sum_q V_q Fk[q] (the
+ * pressure solve's sensitivities): a small dense system, stable whatever the plate's mass
+ * against the fluid's added mass. x: V^{n+1} of each loaded plate. */
+int sph_plate_loaded_velocities(sph_world *w, double dt, int K, const int *loaded, const double *F0,
+                                double (*Fk)[SPH_MAX_PLATES], double *x) {
+    double a[SPH_MAX_LOADED][SPH_MAX_LOADED];
+    for (int r = 0; r < K; r++) {
+        sph_plate *pl = &w->plates[loaded[r]];
+        for (int c = 0; c < K; c++) a[r][c] = -Fk[c][loaded[r]];
+        a[r][r] += pl->mass / dt;
+        x[r] = pl->mass * pl->vel / dt + pl->load + pl->force_visc + F0[loaded[r]];
+    }
+    if (sph_dense_solve(K, &a[0][0], SPH_MAX_LOADED, x))
+        return sph_world_fail(w, "singular plate system at step %ld (t = %g)", w->steps, w->t);
+    for (int q = 0; q < K; q++) w->plates[loaded[q]].vel_new = x[q]; /* V^{n+1} */
+    return 0;
+}
+
+/* Whole-sample viscous force of each plate from the simulated part's sums f. */
+void sph_plate_set_viscous_forces(sph_world *w, const double *f) {
+    for (int k = 0; k < w->nplates; k++) w->plates[k].force_visc = f[k] * (w->plates[k].doubled ? 2.0 : 1.0);
+}
+
+/* plate accessors (whole-sample values) */
+static int plate_ok(sph_world *w, int k) {
+    if (k < 0 || k >= w->nplates) return sph_world_fail(w, "no plate %d", k + 1);
+    return 0;
+}
+
+int sph_plate_set_velocity(sph_world *w, int k, double v) {
+    if (plate_ok(w, k)) return -1;
+    if (w->plates[k].axis < 0) return sph_world_fail(w, "plate %d is fixed (no axis): it cannot move", k + 1);
+    if (!isfinite(v)) return sph_world_fail(w, "plate %d: velocity %g is not finite", k + 1, v);
+    w->plates[k].mode = SPH_PLATE_VELOCITY;
+    w->plates[k].vel = v;
+    return 0;
+}
+
+int sph_plate_set_load(sph_world *w, int k, double f) {
+    if (plate_ok(w, k)) return -1;
+    if (w->plates[k].axis < 0) return sph_world_fail(w, "plate %d is fixed (no axis): it cannot move", k + 1);
+    if (!isfinite(f)) return sph_world_fail(w, "plate %d: load %g is not finite", k + 1, f);
+    sph_plate *pl = &w->plates[k];
+    pl->mode = SPH_PLATE_LOAD;
+    pl->load = f;
+    return 0;
+}
+
+int sph_plate_set_mass(sph_world *w, int k, double m) {
+    if (plate_ok(w, k)) return -1;
+    if (!(m > 0 && isfinite(m))) return sph_world_fail(w, "plate %d: mass must be a positive number", k + 1);
+    w->plates[k].mass = m;
+    w->plates[k].mass_set = 1;
+    return 0;
+}
+
+int sph_plate_set_slide(sph_world *w, int k, double sx, double sy) {
+    if (plate_ok(w, k)) return -1;
+    if (!isfinite(sx) || !isfinite(sy))
+        return sph_world_fail(w, "plate %d: slide velocity (%g, %g) is not finite", k + 1, sx, sy);
+    w->plates[k].slide[0] = sx;
+    w->plates[k].slide[1] = sy;
+    return 0;
+}
+
+void sph_plate_slide(const sph_world *w, int k, double slide[2]) {
+    slide[0] = w->plates[k].slide[0];
+    slide[1] = w->plates[k].slide[1];
+}
+
+sph_plate_mode sph_plate_mode_of(const sph_world *w, int k) { return w->plates[k].mode; }
+int sph_plate_axis(const sph_world *w, int k) { return w->plates[k].axis; }
+double sph_plate_velocity(const sph_world *w, int k) { return w->plates[k].vel; }
+double sph_plate_load(const sph_world *w, int k) {
+    return w->plates[k].mode == SPH_PLATE_LOAD ? w->plates[k].load : 0.0;
+}
+double sph_plate_force(const sph_world *w, int k) { return w->plates[k].force; }
+double sph_plate_mass(const sph_world *w, int k) { return w->plates[k].mass; }
+void sph_plate_rect(const sph_world *w, int k, double rect[4]) {
+    memcpy(rect, w->plates[k].rect, sizeof(double) * 4);
 }

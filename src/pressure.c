@@ -169,69 +169,12 @@ static inline void sens_velocity(const sph_world *w, int j, int k, double *vx, d
     else if (pl->axis == 1) *vy = w->gsy[j];
 }
 
-/* Fluid pressure force on every plate along its axis, for a pressure field p (ghosts
- * synced): F = sum_{a fluid, B in plate} m_a m_B (p_a / rho_a^2 + p_B / rho_B^2) grad_a W. */
-static void plate_pressure_force(const sph_world *w, const double *p, double *out) {
-    int n = w->n, np = w->nplates;
-    double f[SPH_MAX_PLATES] = {0};
-#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : f[:SPH_MAX_PLATES])
-    for (int i = 0; i < n; i++) {
-        if (w->kind[i] != SPH_FLUID) continue;
-        double pi = p[i] / (w->rho[i] * w->rho[i]);
-        for (int k = w->nb_mid[i]; k < w->nb_start[i + 1]; k++) { /* walls */
-            int j = w->nb_j[k], pk = w->kind[j];
-            if (w->plates[pk].axis < 0) continue;
-            double c = w->m[i] * w->m[j] * (pi + p[j] / (w->rho[j] * w->rho[j]));
-            f[pk] += w->plates[pk].axis == 0 ? c * w->nb_gx[k] * w->gsx[j] : c * w->nb_gy[k] * w->gsy[j];
-        }
-    }
-    for (int k = 0; k < np; k++) out[k] = f[k] * (w->plates[k].doubled ? 2.0 : 1.0);
-}
-
 void sph_pressure_scatter(sph_world *w, const double *sol, double *p, const double *surface) {
     for (int i = 0; i < w->n; i++) p[i] = surface && w->kind[i] == SPH_FLUID && w->surf[i] ? surface[i] : 0.0;
     for (int r = 0; r < w->nrows; r++) p[w->row_of[r]] = sol[r];
     sph_boundary_sync(w, p, 0, 0);
 }
 
-/* Small dense solve A x = b (Gaussian elimination with partial pivoting): A is n x n with
- * rows lda apart, x holds b on entry. Returns the number of zero pivots; their unknowns
- * come out 0 (the plates' system treats any as an error, the GMRES least squares takes
- * the solution in the space the others span). */
-#define A_(r, c) a[(size_t)(r) * (size_t)lda + (size_t)(c)]
-int sph_pressure_dense_solve(int n, double *a, int lda, double *x) {
-    int zero = 0;
-    for (int c = 0; c < n; c++) {
-        int piv = c;
-        for (int r = c + 1; r < n; r++)
-            if (fabs(A_(r, c)) > fabs(A_(piv, c))) piv = r;
-        if (A_(piv, c) == 0.0) {
-            zero++;
-            continue;
-        }
-        if (piv != c) {
-            for (int k = 0; k < n; k++) {
-                double t = A_(c, k);
-                A_(c, k) = A_(piv, k);
-                A_(piv, k) = t;
-            }
-            double t = x[c];
-            x[c] = x[piv];
-            x[piv] = t;
-        }
-        for (int r = c + 1; r < n; r++) {
-            double f = A_(r, c) / A_(c, c);
-            for (int k = c; k < n; k++) A_(r, k) -= f * A_(c, k);
-            x[r] -= f * x[c];
-        }
-    }
-    for (int r = n - 1; r >= 0; r--) {
-        for (int k = r + 1; k < n; k++) x[r] -= A_(r, k) * x[k];
-        x[r] = A_(r, r) != 0.0 ? x[r] / A_(r, r) : 0.0;
-    }
-    return zero;
-}
-#undef A_
 
 /* SELF_TERM: the symmetric gradient's term in p_i itself. The projection moves particle i
  * by -dt (G p)_i with (G p)_i = sum_j m_j (p_i / rho_i^2 + p_j / rho_j^2) grad W_ij, which
@@ -408,29 +351,21 @@ int sph_pressure_solve(sph_world *w, double dt) {
         chg[i] = r >= 0 ? w->sol[r] - p0 : 0.0;
     }
     sph_pressure_scatter(w, w->sol, w->p, w->ps);
-    plate_pressure_force(w, w->p, F0);
+    sph_plate_pressure_force(w, w->p, F0);
     if (K > 0) {
-        double a[SPH_MAX_LOADED][SPH_MAX_LOADED], x[SPH_MAX_LOADED];
+        double x[SPH_MAX_LOADED];
         for (int q = 0; q < K; q++) {
             sph_pressure_scatter(w, w->solk[q], w->psens[q], 0);
-            plate_pressure_force(w, w->psens[q], Fk[q]);
+            sph_plate_pressure_force(w, w->psens[q], Fk[q]);
         }
-        for (int r = 0; r < K; r++) {
-            sph_plate *pl = &w->plates[loaded[r]];
-            for (int c = 0; c < K; c++) a[r][c] = -Fk[c][loaded[r]];
-            a[r][r] += pl->mass / dt;
-            x[r] = pl->mass * pl->vel / dt + pl->load + pl->force_visc + F0[loaded[r]];
-        }
-        if (sph_pressure_dense_solve(K, &a[0][0], SPH_MAX_LOADED, x))
-            return sph_world_fail(w, "singular plate system at step %ld (t = %g)", w->steps, w->t);
-        for (int q = 0; q < K; q++) w->plates[loaded[q]].vel_new = x[q]; /* V^{n+1} */
+        if (sph_plate_loaded_velocities(w, dt, K, loaded, F0, Fk, x)) return -1;
         int nt = n + w->ng;
         for (int i = 0; i < nt; i++) {
             double pi = w->p[i];
             for (int q = 0; q < K; q++) pi += x[q] * w->psens[q][i];
             w->p[i] = pi;
         }
-        plate_pressure_force(w, w->p, F0);
+        sph_plate_pressure_force(w, w->p, F0);
     }
     for (int k = 0; k < w->nplates; k++) w->plates[k].force = F0[k] + w->plates[k].force_visc;
     return 0;

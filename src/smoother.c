@@ -7,7 +7,7 @@
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC optimize("align-loops=64", "align-functions=64")
 #endif
-#include "internal.h"
+#include "linalg.h"
 
 #include <math.h>
 #include <omp.h>

@@ -1,58 +1,12 @@
-/* Sparse linear algebra: a CSR matrix and conjugate gradients preconditioned by the
- * algebraic multigrid cycle of amg.c.
+/* Conjugate gradients preconditioned by the algebraic multigrid cycle of amg.c, for one
+ * system or two of the same structure, and the solves' first guesses.
  * The solver has a contract (SPlisHSPlasH style): tolerance and iteration limit in,
  * iterations, residual and convergence out; it never fails silently. */
-#include "internal.h"
+#include "linalg.h"
 
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
-
-int sph_grow(void **p, size_t elem, int count) {
-    void *q = realloc(*p, elem * (size_t)(count > 0 ? count : 1));
-    if (!q) return -1;
-    *p = q;
-    return 0;
-}
-
-int sph_csr_reserve(sph_csr *a, int n, int nnz) {
-    if (n + 1 > a->cap) {
-        int cap = n + 1 + n / 4;
-        if (sph_grow((void **)&a->start, sizeof(int), cap) || sph_grow((void **)&a->diag, sizeof(double), cap))
-            return -1;
-        a->cap = cap;
-    }
-    if (nnz > a->nnz) {
-        int cap = nnz + nnz / 4;
-        if (sph_grow((void **)&a->col, sizeof(int), cap) || sph_grow((void **)&a->val, sizeof(double), cap))
-            return -1;
-        a->nnz = cap;
-    }
-    a->n = n;
-    return 0;
-}
-
-void sph_csr_free(sph_csr *a) {
-    free(a->start);
-    free(a->col);
-    free(a->val);
-    free(a->diag);
-    a->start = a->col = 0;
-    a->val = a->diag = 0;
-    a->n = a->nnz = a->cap = 0;
-}
-
-void sph_csr_matvec(const sph_csr *a, const double *x, double *y, int threads) {
-    int n = a->n;
-    const int *st = a->start, *col = a->col; /* in locals: not reloaded after each store to y */
-    const double *val = a->val;
-#pragma omp parallel for schedule(static) num_threads(threads)
-    for (int i = 0; i < n; i++) {
-        double s = 0.0;
-        for (int k = st[i]; k < st[i + 1]; k++) s += val[k] * x[col[k]];
-        y[i] = s;
-    }
-}
 
 void sph_guess_weights(const sph_guess *g, int n, double dt, double *a, double *b) {
     *a = *b = 0.0;

@@ -161,19 +161,6 @@ static inline double wall_coeff(const sph_world *w, int i, int j, int k, double 
     return sph_plate_noslip(w, i, j) * w->vol[j] * 2.0 * w->eta[i] * w->nb_f[k] / w->rho[i];
 }
 
-/* The force along its axis that this pair puts on wall j's plate (0 for a fixed plate). */
-static inline double plate_pull(const sph_world *w, int i, int j, double cw, double ui, double vi,
-                                double wx, double wy) {
-    const sph_plate *pl = &w->plates[w->kind[j]];
-    if (pl->axis < 0) return 0.0;
-    return -w->m[i] * cw * (pl->axis == 0 ? (ui - wx) * w->gsx[j] : (vi - wy) * w->gsy[j]);
-}
-
-/* Whole-sample viscous force of each plate from the simulated part's sums. */
-static void set_plate_viscous_forces(sph_world *w, const double *f) {
-    for (int k = 0; k < w->nplates; k++) w->plates[k].force_visc = f[k] * (w->plates[k].doubled ? 2.0 : 1.0);
-}
-
 /* u* = u + dt (viscous + g) for fluid; walls keep the plate velocity. The viscous force
  * each plate takes from the fluid is accumulated on the way (whole sample). */
 void sph_viscous_explicit(sph_world *w, double dt) {
@@ -205,7 +192,7 @@ void sph_viscous_explicit(sph_world *w, double dt) {
             int j = nj[k];
             double wx, wy, c = wall_coeff(w, i, j, k, &wx, &wy);
             double du = ui - wx, dv = vi - wy;
-            fplate[w->kind[j]] += plate_pull(w, i, j, c, ui, vi, wx, wy);
+            fplate[w->kind[j]] += sph_plate_pull(w, i, j, c, ui, vi, wx, wy);
             au += c * du;
             av += c * dv;
         }
@@ -214,7 +201,7 @@ void sph_viscous_explicit(sph_world *w, double dt) {
         w->us[i] = ui + dt * (au + gx + fx);
         w->vs[i] = vi + dt * (av + gy + fy);
     }
-    set_plate_viscous_forces(w, fplate);
+    sph_plate_set_viscous_forces(w, fplate);
     sph_boundary_sync(w, w->us, w->vs, 1);
     surface_pressure(w, w->us, w->vs);
 }
@@ -422,12 +409,12 @@ int sph_viscous_implicit(sph_world *w, double dt) {
             int j = w->nb_j[k];
             if (w->plates[w->kind[j]].axis < 0) continue;
             double wx, wy, cw = wall_coeff(w, i, j, k, &wx, &wy);
-            fplate[w->kind[j]] += plate_pull(w, i, j, cw, w->us[i], w->vs[i], wx, wy);
+            fplate[w->kind[j]] += sph_plate_pull(w, i, j, cw, w->us[i], w->vs[i], wx, wy);
         }
         w->us[i] -= dt * w->xs[i];
         w->vs[i] -= dt * w->ys[i];
     }
-    set_plate_viscous_forces(w, fplate);
+    sph_plate_set_viscous_forces(w, fplate);
     sph_boundary_sync(w, w->us, w->vs, 1);
     return 0;
 }
