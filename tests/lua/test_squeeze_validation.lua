@@ -185,13 +185,13 @@ T.case("Bingham squeeze, Bn = 100, under a constant load: the stop height", func
   -- measured (one thread, M = 100, Re = 1, dx = 1/20): h(0.7) = 0.445 with -O2, 0.4416
   -- under make check's -O1 build, against the ideal Bingham stop height
   -- (tau0 / (2 F))^(1/3) = 0.5; the error 0.495 and 0.532 (thin-film theory needs about
-  -- 1.5 x F at the run's h and V). The references are the builds' middles, tolerances 0.02
-  -- on h(0.7) and 0.15 on the error. The sample goes through the stop height: at slow
+  -- 1.5 x F at the run's h and V). Bounds: the error at most 0.663, |h(0.7) - 0.5| at most
+  -- 0.077 (the -O2 figures plus 0.15 and 0.02). The sample goes through the stop height: at slow
   -- closing speeds it carries less than its yield stress says (docs/limitations.md), a
   -- wrong result kept here so that a fix shows. The pressure predictor (the default) keeps
   -- the slow film from slipping along the no-slip walls, which otherwise doubles the error.
-  T.close(r.error, 0.513, 0.15, "Bingham squeeze F = 400, dx = 1/20: error within 0.15 of 0.513")
-  T.close(r.h, 0.443, 0.02, "Bingham squeeze F = 400, dx = 1/20: h(0.7) within 0.02 of 0.443 (ideal stop 0.5)")
+  T.below(math.abs(r.error), 0.663, "Bingham squeeze F = 400, dx = 1/20: error under 0.663")
+  T.below(math.abs(r.h - r.h_stop), 0.077, "Bingham squeeze F = 400, dx = 1/20: h(0.7) within 0.077 of the ideal stop height")
 end)
 
 T.done()

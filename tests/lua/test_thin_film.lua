@@ -6,9 +6,9 @@
 -- with GMRES alone the error peaks at 0.96 %, with the difference gradient alone at 7.8 %.
 -- At dx = 1/80 (16 rows) the defaults' plate force runs away at h = 0.191 (a pressure mode
 -- alternating from step to step); with both options the film reaches h = 0.17 with the
--- error under 0.8 % (582 steps). The limit is the stability suite's own (1 %); the force
--- band is +-0.1 around the measured 0.86-0.88 (the force is noisy step to step: 0.82-0.94
--- between h = 0.185 and 0.17).
+-- error under 0.8 % (582 steps). The limit is the stability suite's own (1 %); the force's
+-- error against lubrication, 0.12-0.14, is bounded at 0.23 (the force is noisy step to
+-- step: 0.82-0.94 between h = 0.185 and 0.17).
 local squeeze = require "sph.squeeze"
 local T = require "sph.test"
 local o = ... or {}
@@ -31,7 +31,7 @@ T.case("film started thin, dx = 1/40, gmres + difference gradient, to h = 0.17",
     top.position, w.steps, w:stats().wall_time, peak, ratio))
   T.check(ok, "film started thin: runs to h = 0.17 without an engine error", tostring(err))
   T.below(peak, 0.01, "film started thin: max density error under 1 % at every step")
-  T.close(ratio, 0.87, 0.1, "film started thin: plate force within 0.1 of 0.87 x lubrication over h in [0.17, 0.175]")
+  T.below(math.abs(ratio - 1), 0.23, "film started thin: plate force within 0.23 of lubrication over h in [0.17, 0.175]")
 end)
 
 -- The density passes' first direction (density.c): a step's first pass moves along the
