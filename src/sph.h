@@ -44,7 +44,7 @@ typedef struct sph_params {
     double gravity[2];     /* body force per unit mass                             */
     sph_viscosity viscosity;
     double shifting;       /* particle-shifting coefficient, 0 = off              */
-    double dt_max;         /* upper bound on dt (0: none)                          */
+    double dt_max;         /* upper bound on dt, >= 0 (0: none)                    */
     double dt_min;         /* a step below this is an error (0: 1e-12 * h)         */
     int periodic[2];       /* periodic in x / y                                    */
     double period_lo[2], period_hi[2];
@@ -54,7 +54,7 @@ typedef struct sph_params {
     double tol;            /* relative residual of every solve, the pressure's and
                               the implicit viscous step's; default 1e-6
                               (docs/performance.md: what looser costs)               */
-    double surface_div;    /* free surface where div r < surface_div (2D: 2 full)  */
+    double surface_div;    /* free surface where div r < this, >= 0 (2D: 2 full) */
     double density_tol;    /* dt shrinks while the max density error exceeds this
                               (0: no control); default 0.005                        */
     int density_gmres;     /* 1: the density correction minimises the continuity

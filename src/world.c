@@ -44,7 +44,8 @@ static const char *check_params(const sph_params *p) {
         "an axis cannot be both periodic and a symmetry plane", "tol must be in (0, 1)", "gravity must be finite",
         "shifting must be >= 0", "density_tol must be in [0, 1)", "density_gmres must be 0 or 1",
         "pressure_gradient must be SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE",
-        "threads must be 1..256 (0: all cores)"};
+        "threads must be 1..256 (0: all cores)", "dt_max must be a number >= 0 (0: no bound)",
+        "surface must be a number >= 0 (0: no free surface)"};
     _Static_assert(SPH_MAX_THREADS == 256, "the threads message names the bound");
     if (!(p->dx > 0 && isfinite(p->dx))) return bad[0];
     if (!(p->rho0 > 0 && isfinite(p->rho0))) return bad[1];
@@ -59,6 +60,8 @@ static const char *check_params(const sph_params *p) {
     if (p->density_gmres != 0 && p->density_gmres != 1) return bad[8];
     if (p->pressure_gradient != SPH_GRAD_SYMMETRIC && p->pressure_gradient != SPH_GRAD_DIFFERENCE) return bad[9];
     if (!(p->threads >= 0 && p->threads <= SPH_MAX_THREADS)) return bad[10];
+    if (!(p->dt_max >= 0 && isfinite(p->dt_max))) return bad[11];
+    if (!(p->surface_div >= 0 && isfinite(p->surface_div))) return bad[12];
     return 0;
 }
 

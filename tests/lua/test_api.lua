@@ -633,4 +633,45 @@ T.case("sph.units: the groups and scales of a case in physical units", function(
   T.checkerror("not both", "mu and K", units.scales, { H = 1, U = 1, rho = 1, mu = 1, K = 1, n = 1 })
 end)
 
+-- docs/api.md documents sph.world's options as they are: each key the engine takes in a
+-- row of the options' tables (and their count in the heading), each removed one in the
+-- table of removed options, and no other.
+T.case("docs/api.md lists sph.world's options", function()
+  local top = arg[0]:match("^(.*)/tests/lua/[^/]+$") or "."
+  local f = assert(io.open(top .. "/docs/api.md"))
+  local doc = f:read("a")
+  f:close()
+  local _, err = pcall(sph.world, { dx = 0.1, not_an_option = 1 })
+  local list = tostring(err):match("options are ([^)]*)")
+  T.check(list ~= nil, "the unknown-option error lists the options", tostring(err))
+  local keys = {}
+  for k in (list or ""):gmatch("[%w_]+") do keys[#keys + 1] = k end
+  local a = doc:find("## `sph.world{...}`", 1, true) or 1
+  local r = doc:find("### Removed options", a, true) or #doc
+  local e = doc:find("\n## ", r, true) or #doc
+  local opts, removed = doc:sub(a, r), doc:sub(r, e)
+  local rows = {}
+  for k in opts:gmatch("\n| `([%w_]+)` |") do rows[k] = true end
+  local missing = {}
+  for _, k in ipairs(keys) do
+    if not rows[k] then missing[#missing + 1] = k end
+    rows[k] = nil
+  end
+  local extra = {}
+  for k in pairs(rows) do extra[#extra + 1] = k end
+  T.check(#missing == 0 and #extra == 0, "every option has its row and every row is an option",
+    "missing: " .. table.concat(missing, ", ") .. "; not options: " .. table.concat(extra, ", "))
+  T.check(opts:find(("the %d options"):format(#keys), 1, true) ~= nil,
+    ("the heading gives the count, %d"):format(#keys))
+  local gone, undocumented = 0, {}
+  for k in removed:gmatch("\n| `([%w_]+)` |") do
+    gone = gone + 1
+    local ok, msg = pcall(sph.world, { dx = 0.1, [k] = 1 })
+    if ok or not tostring(msg):find("was removed", 1, true) then undocumented[#undocumented + 1] = k end
+  end
+  T.check(gone > 0 and #undocumented == 0, "every removed option of the table is refused as removed",
+    table.concat(undocumented, ", "))
+  T.check(tonumber(removed:match("took (%d+) more options")) == gone, ("the removed options' count is the table's, %d"):format(gone))
+end)
+
 T.done()
