@@ -185,65 +185,6 @@ static double matvec_dot(const sph_csr *a, const double *x, double *y, int threa
     return s;
 }
 
-sph_solve_result sph_solver_pcg(sph_solver *s, const sph_csr *a, const double *b, double *x,
-                                double tol, int max_iter, int threads) {
-    sph_solve_result res = {0, 0.0, 1};
-    int n = a->n;
-    if (n == 0) return res;
-    if (!(s->amg_for == a && s->cur && s->cur->levels > 0 && s->cur->fine_n == n))
-        return (sph_solve_result){0, 1.0, 0}; /* no hierarchy for a */
-    double t0 = omp_get_wtime();
-    s->solves++;
-    double *r = s->r, *z = s->z, *q = s->q, *d = s->d;
-    double bnorm = sqrt(dot(b, b, n, threads));
-    if (bnorm == 0.0) {
-        for (int i = 0; i < n; i++) x[i] = 0.0;
-        return res;
-    }
-    sph_csr_matvec(a, x, q, threads);
-    for (int i = 0; i < n; i++) r[i] = b[i] - q[i];
-    sph_amg_apply(s->cur, a, r, z, threads);
-    for (int i = 0; i < n; i++) d[i] = z[i];
-    double rz = dot(r, z, n, threads);
-    double rnorm = sqrt(dot(r, r, n, threads));
-    int it = 0;
-    while (rnorm > tol * bnorm && it < max_iter) {
-        double dq = matvec_dot(a, d, q, threads);
-        if (!(dq > 0.0)) break; /* not SPD, or breakdown: reported as not converged */
-        double alpha = rz / dq;
-        double rr = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : rr) num_threads(threads)
-        for (int i = 0; i < n; i++) {
-            x[i] += alpha * d[i];
-            r[i] -= alpha * q[i];
-            rr += r[i] * r[i];
-        }
-        it++;
-        if (!(sqrt(rr) > tol * bnorm)) {
-            rnorm = sqrt(rr);
-            break;
-        }
-        sph_amg_apply(s->cur, a, r, z, threads);
-        double rz1 = dot(r, z, n, threads);
-        rnorm = sqrt(rr);
-        if (!(rz1 > 0.0)) break; /* preconditioner not positive definite: not converged */
-        double beta = rz1 / rz;
-        rz = rz1;
-#pragma omp parallel for schedule(static) num_threads(threads)
-        for (int i = 0; i < n; i++) d[i] = z[i] + beta * d[i];
-    }
-    res.iterations = it;
-    if (s->first_pending) {
-        s->first_pending = 0;
-        s->cur->it_recent = it;
-        if (s->cur->it_fresh < 0) s->cur->it_fresh = it;
-    }
-    res.residual = rnorm / bnorm;
-    res.converged = isfinite(rnorm) && rnorm <= tol * bnorm;
-    s->solve_time += omp_get_wtime() - t0;
-    return res;
-}
-
 int sph_solver_second(sph_solver *s, const sph_csr *a, const sph_csr *a2, int threads) {
     if (s->amg_for != a || !s->cur || s->cur->levels == 0) return 0;
     double t0 = omp_get_wtime();
@@ -252,9 +193,10 @@ int sph_solver_second(sph_solver *s, const sph_csr *a, const sph_csr *a2, int th
     return rc;
 }
 
-/* Two systems side by side (sph_solver_pcg2). The per-system steps are those of
- * sph_solver_pcg, in the same order; the products and the cycle take both
- * systems in one pass while both iterate, one alone once the other has stopped.
+/* Conjugate gradients preconditioned by the multigrid cycle, for one system or two side by
+ * side (the viscous u and v): the products and the cycle take both systems in one pass
+ * while both iterate, one alone once the other has stopped, so each system's iterates are
+ * those it has solved alone.
  * The cycle's sweeps are bound by the instructions per nonzero more than by memory: the
  * two systems in one loop share the column loads and the loop, and their two chains of
  * additions overlap, which takes about a fifth off the pair's solve time. */
@@ -292,23 +234,23 @@ static void matvec_pair_dot(const sph_csr *a1, const sph_csr *a2, const double *
     dots[1] = d2;
 }
 
-void sph_solver_pcg2(sph_solver *s, const sph_csr *a1, const sph_csr *a2, const double *b1, const double *b2,
-                     double *x1, double *x2, double tol, int max_iter, int threads, sph_solve_result res[2]) {
+/* CG on k = 1 or 2 systems of the structure of a1 (a2, b2, x2 unused when k = 1). */
+static void pcg_run(sph_solver *s, int k, const sph_csr *a1, const sph_csr *a2, const double *b1, const double *b2,
+                    double *x1, double *x2, double tol, int max_iter, int threads, sph_solve_result *res) {
     int n = a1->n;
-    int amg = s->amg_for == a1 && s->cur && s->cur->levels > 0 && s->cur->fine_n == n;
-    if (!amg || a2->n != n || a2->start != a1->start || a2->col != a1->col) { /* no hierarchy for the pair */
-        res[0] = res[1] = (sph_solve_result){0, 1.0, 0};
-        return;
-    }
     double t0 = omp_get_wtime();
     pcg_state P[2] = {{a1, b1, x1, s->r, s->z, s->q, s->d, 0, 0, 0, 0, 0, 0, 0, {0, 0.0, 1}},
-                      {a2, b2, x2, s->r2, s->z2, s->q2, s->d2, 0, 0, 0, 0, 0, 0, 0, {0, 0.0, 1}}};
-    for (int c = 0; c < 2; c++) {
+                      {k == 2 ? a2 : a1, b2, x2, s->r2, s->z2, s->q2, s->d2, 0, 0, 0, 0, 0, 0, 0, {0, 0.0, 1}}};
+    for (int c = 0; c < k; c++) {
         pcg_state *p = &P[c];
         s->solves++;
         p->bnorm = sqrt(dot(p->b, p->b, n, threads));
         if (p->bnorm == 0.0) {
             for (int i = 0; i < n; i++) p->x[i] = 0.0;
+            if (k == 1) { /* nothing to solve; not the hierarchy's first solve either */
+                res[0] = (sph_solve_result){0, 0.0, 1};
+                return;
+            }
             continue;
         }
         sph_csr_matvec(p->a, p->x, p->q, threads);
@@ -319,7 +261,7 @@ void sph_solver_pcg2(sph_solver *s, const sph_csr *a1, const sph_csr *a2, const 
     if (need0 && need1) sph_amg_apply2(s->cur, a1, a2, P[0].r, P[1].r, P[0].z, P[1].z, threads);
     else if (need0) sph_amg_apply(s->cur, a1, P[0].r, P[0].z, threads);
     else if (need1) sph_amg_apply_second(s->cur, a2, P[1].r, P[1].z, threads);
-    for (int c = 0; c < 2; c++) {
+    for (int c = 0; c < k; c++) {
         pcg_state *p = &P[c];
         if (p->bnorm == 0.0) continue;
         for (int i = 0; i < n; i++) p->d[i] = p->z[i];
@@ -377,7 +319,7 @@ void sph_solver_pcg2(sph_solver *s, const sph_csr *a1, const sph_csr *a2, const 
             p->on = p->rnorm > tol * p->bnorm && p->it < max_iter;
         }
     }
-    for (int c = 0; c < 2; c++) {
+    for (int c = 0; c < k; c++) {
         pcg_state *p = &P[c];
         if (p->bnorm == 0.0) {
             res[c] = (sph_solve_result){0, 0.0, 1};
@@ -393,4 +335,26 @@ void sph_solver_pcg2(sph_solver *s, const sph_csr *a1, const sph_csr *a2, const 
         if (s->cur->it_fresh < 0) s->cur->it_fresh = P[0].it;
     }
     s->solve_time += omp_get_wtime() - t0;
+}
+
+sph_solve_result sph_solver_pcg(sph_solver *s, const sph_csr *a, const double *b, double *x,
+                                double tol, int max_iter, int threads) {
+    sph_solve_result res = {0, 0.0, 1};
+    int n = a->n;
+    if (n == 0) return res;
+    if (!(s->amg_for == a && s->cur && s->cur->levels > 0 && s->cur->fine_n == n))
+        return (sph_solve_result){0, 1.0, 0}; /* no hierarchy for a */
+    pcg_run(s, 1, a, 0, b, 0, x, 0, tol, max_iter, threads, &res);
+    return res;
+}
+
+void sph_solver_pcg2(sph_solver *s, const sph_csr *a1, const sph_csr *a2, const double *b1, const double *b2,
+                     double *x1, double *x2, double tol, int max_iter, int threads, sph_solve_result res[2]) {
+    int n = a1->n;
+    int amg = s->amg_for == a1 && s->cur && s->cur->levels > 0 && s->cur->fine_n == n;
+    if (!amg || a2->n != n || a2->start != a1->start || a2->col != a1->col) { /* no hierarchy for the pair */
+        res[0] = res[1] = (sph_solve_result){0, 1.0, 0};
+        return;
+    }
+    pcg_run(s, 2, a1, a2, b1, b2, x1, x2, tol, max_iter, threads, res);
 }
