@@ -35,7 +35,7 @@ end
 -- contact line whose underside, 3 dx and more inside the sheet's tip, is rightly free
 -- surface, and not enclosed). The engine flags a particle off the bulk when the 60-degree
 -- cone around its normal holds no fluid particle within 2 dx and no wall within 1.7 dx
--- (src/world.c): the check's radii are below the engine's, so that round-off does not
+-- (src/surface.c): the check's radii are below the engine's, so that round-off does not
 -- decide between them. The opening is measured as the largest angle between neighbours
 -- (sectors of 45 degrees would call enclosed an opening of up to 90 degrees), and the wall
 -- row within 1.5 dx only, so that it fills no direction the engine's wall particles (dx

@@ -29,7 +29,7 @@ end
 -- is noise (|n| h 0.001-0.014) and a cone along a row can find nothing within 1.5 dx. Every
 -- step to step 3000 (h = 0.28), no flag may lie more than 3 dx inside the outermost
 -- particle of its row and the rows beside it, away from the plates (3 dx). Measured: none;
--- without the empty-cone test's |n| h >= 0.03 (src/world.c, SURFACE_NORMAL_MIN) such flags
+-- without the empty-cone test's |n| h >= 0.03 (src/surface.c, SURFACE_NORMAL_MIN) such flags
 -- come one at a time in 33 of the 3000 steps on one thread, 197 on two.
 T.case("thin film: no surface flags inside the stretched sample (steps 1-3000)", function()
   local squeeze = require "sph.squeeze"
@@ -58,7 +58,7 @@ T.case("thin film: no surface flags inside the stretched sample (steps 1-3000)",
   -- 0 and 0 with -O2 on one and two threads and with make check's -O1 build. Round-off
   -- does not decide borderline flags: the engine's cone reaches further (2 dx, 1.7 dx to
   -- walls) than the check looks (1.6 dx), the check's enclosure is a 60-degree opening
-  -- test, and its edge test looks further (2.1 dx) than the engine's cone (src/world.c,
+  -- test, and its edge test looks further (2.1 dx) than the engine's cone (src/surface.c,
   -- lua/sph/stability.lua).
   local emax, inside, missing = 0, 0, 0
   local function surface()
