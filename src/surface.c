@@ -11,11 +11,14 @@
  * plate force). surface = 0 turns both tests off (a closed domain).
  * The divergence misses some edge particles that have a wall in their support (the contact
  * line, where the sample meets a plate: divergences 1.6-2.0). So a particle not in the bulk
- * (div r < 1.85) is also on the surface when nothing lies in front of it (Marrone et al.
+ * (div r < 1.85; to enter, 1.84) is also on the surface when nothing lies in front of it (Marrone et al.
  * 2010, simplified): no particle, fluid, wall or image, within a radius (SURFACE_CONE_FLUID
  * and the others below) inside the 30-degree cone around its outward normal
  * n = -sum_j V_j grad_i W_ij / |...|. The normal leans away from the wall, so a wider cone
- * (45 degrees) sees the edge's own neighbours next to a plate and misses the particle. */
+ * (45 degrees) sees the edge's own neighbours next to a plate and misses the particle.
+ * The bulk bound has a hysteresis of its own, 0.01: a stretched film's interior particle
+ * can sit at div r 1.848 for hundreds of steps with an empty cone, and round-off (an -O1
+ * build against -O2) then decides whether it is taken for surface. */
 /* The cone's normal must mean something: |sum_j V_j grad_i W_ij| h at least
  * SURFACE_NORMAL_MIN. Inside a sample stretched by the squeeze the particles stand in
  * columns (rows 0.65 dx apart, columns 1.55 dx), div r drops to 1.82-1.85 and the kernel
@@ -26,6 +29,7 @@
  * options some flags inside a stretched film remain (particles whose nearest neighbour in
  * the cone is 1.5-2 dx away, |n| h 0.03-0.12). */
 #define SURFACE_NORMAL_MIN 0.03
+#define BULK_HYSTERESIS 0.01
 /* The cone's radius: 2 dx for fluid particles (and images), 1.75 dx for them next to a wall
  * (a wall within 2 dx), 1.7 dx for wall particles, and a fluid particle of div r < 1
  * (spray: a droplet thrown off, few neighbours) does not close the cone. The radii are
@@ -77,7 +81,7 @@ void sph_surface_mark(sph_world *w) {
         double lim = w->surf[i] ? off : on;
         unsigned char s = 0;
         if (w->kind[i] == SPH_FLUID && on > 0)
-            s = w->divr[i] < lim || (w->divr[i] < bulk && cone_empty(w, i));
+            s = w->divr[i] < lim || (w->divr[i] < (w->surf[i] ? bulk : bulk - BULK_HYSTERESIS) && cone_empty(w, i));
         w->surf[i] = s;
         ns += s;
     }
