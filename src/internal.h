@@ -176,6 +176,9 @@ void sph_plate_prepare(sph_world *w);
 void sph_plate_move(sph_world *w, int k, double dpos);
 int sph_plate_check_escape(sph_world *w);
 void sph_plate_contact(sph_world *w);
+/* The factor from the simulated part of a plate to the whole sample: 2 for a plate that
+ * straddles a symmetry plane. */
+static inline double sph_plate_whole(const sph_plate *pl) { return pl->doubled ? 2.0 : 1.0; }
 /* Fluid pressure force on every plate along its axis for a pressure field p (ghosts
  * synced), whole-sample values into out[k]. */
 void sph_plate_pressure_force(const sph_world *w, const double *p, double *out);

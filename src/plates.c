@@ -71,7 +71,7 @@ int sph_plate_fill(sph_world *w, const double rect[4], int axis) {
         }
     }
     pl->count = count;
-    pl->mass = w->mass0 * count * (pl->doubled ? 2.0 : 1.0);
+    pl->mass = w->mass0 * count * sph_plate_whole(pl);
     w->nplates++;
     w->prepared = 0;
     return k;
@@ -271,7 +271,7 @@ void sph_plate_pressure_force(const sph_world *w, const double *p, double *out) 
             f[pk] += w->plates[pk].axis == 0 ? c * w->nb_gx[k] * w->gsx[j] : c * w->nb_gy[k] * w->gsy[j];
         }
     }
-    for (int k = 0; k < np; k++) out[k] = f[k] * (w->plates[k].doubled ? 2.0 : 1.0);
+    for (int k = 0; k < np; k++) out[k] = f[k] * sph_plate_whole(&w->plates[k]);
 }
 
 /* The loaded plates' equations of motion M (V - V^n) / dt = F_load + F_visc + F_p(V), with
@@ -295,7 +295,7 @@ int sph_plate_loaded_velocities(sph_world *w, double dt, int K, const int *loade
 
 /* Whole-sample viscous force of each plate from the simulated part's sums f. */
 void sph_plate_set_viscous_forces(sph_world *w, const double *f) {
-    for (int k = 0; k < w->nplates; k++) w->plates[k].force_visc = f[k] * (w->plates[k].doubled ? 2.0 : 1.0);
+    for (int k = 0; k < w->nplates; k++) w->plates[k].force_visc = f[k] * sph_plate_whole(&w->plates[k]);
 }
 
 /* plate accessors (whole-sample values) */

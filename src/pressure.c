@@ -175,7 +175,6 @@ void sph_pressure_scatter(sph_world *w, const double *sol, double *p, const doub
     sph_boundary_sync(w, p, 0, 0);
 }
 
-
 /* SELF_TERM: the symmetric gradient's term in p_i itself. The projection moves particle i
  * by -dt (G p)_i with (G p)_i = sum_j m_j (p_i / rho_i^2 + p_j / rho_j^2) grad W_ij, which
  * holds p_i g_i / rho_i^2, g_i = sum_j m_j grad W_ij (zero in a full, even support; not in
