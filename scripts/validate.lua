@@ -278,7 +278,7 @@ local function yield_run(rec, frac, n)
     ts[#ts + 1], hs[#hs + 1] = w.t, top.position
   end }
   local s = w:stats()
-  return { h = top.position, V = top.velocity, force = top.force, yielded = s.yielded / s.fluid, steps = w.steps,
+  return { h = top.position, V = top:velocity(), force = top.force, yielded = s.yielded / s.fluid, steps = w.steps,
            cpu = s.wall_time, peak = s.peak_density_error, ts = ts, hs = hs }
 end
 

@@ -236,8 +236,6 @@ static const char *const REMOVED[][2] = {
     {"density_wait", "makes the passes the density error asks for at every step"},
     {"density_probe", "tries a later density pass after one that moved nothing on a loose solve first"},
     {"density_gradient", "moves the first density pass along whichever gradient lowers the error more"},
-    {"h", "takes the smoothing length h = dx (w.h reads it)"},
-    {"cfl", "limits dt to 0.25 h / max speed"},
     {"visc_tol", "solves the implicit viscous step to tol, the pressure solve's tolerance"},
 };
 
@@ -252,7 +250,8 @@ static const struct {
     {"dx", offsetof(sph_params, dx)},           {"rho", offsetof(sph_params, rho0)},
     {"shifting", offsetof(sph_params, shifting)}, {"dt_max", offsetof(sph_params, dt_max)},
     {"tol", offsetof(sph_params, tol)},         {"surface", offsetof(sph_params, surface_div)},
-    {"density_tol", offsetof(sph_params, density_tol)},
+    {"density_tol", offsetof(sph_params, density_tol)}, {"h", offsetof(sph_params, h)},
+    {"cfl", offsetof(sph_params, cfl)},
 };
 #define N_NUMBER_OPTS (sizeof NUMBER_OPTS / sizeof NUMBER_OPTS[0])
 static const char *const OTHER_OPTS[] = {"gravity", "viscosity", "periodic", "symmetry", "threads",

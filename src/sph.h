@@ -38,8 +38,11 @@ typedef enum { SPH_VISC_EXPLICIT = 0, SPH_VISC_IMPLICIT = 1 } sph_viscosity;
 /* The options a user chooses for a physical or a practical reason (sph.world{...},
  * docs/api.md); the scheme's numerical constants live in the file that uses them. */
 typedef struct sph_params {
-    double dx;             /* initial particle spacing (> 0); the smoothing length
-                              h is dx (sph_world_h)                                 */
+    double dx;             /* initial particle spacing (> 0)                       */
+    double h;              /* smoothing length, the kernel's support is 3 h: 0 (the
+                              default) is dx; else in [dx, 2 dx] (sph_world_h)       */
+    double cfl;            /* dt <= cfl h / max speed: 0 (the default) is 0.25;
+                              else in (0, 1]                                        */
     double rho0;           /* reference density                                    */
     double gravity[2];     /* body force per unit mass                             */
     sph_viscosity viscosity;

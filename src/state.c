@@ -18,11 +18,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define STATE_MAGIC "SPHSTAT8" /* 2: the density fallback's wait, 3: the later passes' wait, 4: the
+#define STATE_MAGIC "SPHSTAT9" /* 2: the density fallback's wait, 3: the later passes' wait, 4: the
                                   * last later pass stalled, 5: the last first pass's form (density.c),
                                   * 6: the solves' first guesses and multigrid hierarchies, 7: the
                                   * numerical options and the later passes' wait gone, 8: h, cfl and
-                                  * visc_tol gone from sph_params */
+                                  * visc_tol gone from sph_params, 9: h and cfl back (the
+                                  * stable Lua surface of DESIGN.md) */
 
 typedef struct {
     char magic[8];

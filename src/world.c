@@ -45,7 +45,9 @@ static const char *check_params(const sph_params *p) {
         "shifting must be >= 0", "density_tol must be in [0, 1)", "density_gmres must be 0 or 1",
         "pressure_gradient must be SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE",
         "threads must be 1..256 (0: all cores)", "dt_max must be a number >= 0 (0: no bound)",
-        "surface must be a number >= 0 (0: no free surface)"};
+        "surface must be a number >= 0 (0: no free surface)",
+        "h must be 0 (dx) or between dx and 2 dx: the kernel's support 3 h must hold the lattice's neighbours",
+        "cfl must be 0 (0.25) or in (0, 1]"};
     _Static_assert(SPH_MAX_THREADS == 256, "the threads message names the bound");
     if (!(p->dx > 0 && isfinite(p->dx))) return bad[0];
     if (!(p->rho0 > 0 && isfinite(p->rho0))) return bad[1];
@@ -62,6 +64,8 @@ static const char *check_params(const sph_params *p) {
     if (!(p->threads >= 0 && p->threads <= SPH_MAX_THREADS)) return bad[10];
     if (!(p->dt_max >= 0 && isfinite(p->dt_max))) return bad[11];
     if (!(p->surface_div >= 0 && isfinite(p->surface_div))) return bad[12];
+    if (!(p->h == 0 || (p->h >= p->dx && p->h <= 2 * p->dx))) return bad[13];
+    if (!(p->cfl == 0 || (p->cfl > 0 && p->cfl <= 1))) return bad[14];
     return 0;
 }
 
@@ -95,7 +99,7 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
     w->dx = p->dx;
     /* h = dx: the quintic kernel reaches 3 dx, the support every figure of the suite and
      * of docs/validation.md was measured with (docs/method.md, "Kernel and neighbours"). */
-    w->h = p->dx;
+    w->h = p->h > 0 ? p->h : p->dx;
     w->eps2 = 0.01 * w->h * w->h;
     w->mass0 = p->rho0 * p->dx * p->dx;
     w->threads = p->threads > 0 ? p->threads : omp_get_num_procs();

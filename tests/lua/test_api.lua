@@ -86,7 +86,7 @@ T.case("world arguments", function()
   for _, k in ipairs{ "cvisc", "cforce", "max_iter", "solver", "pressure_predictor", "wall", "projection_passes",
                       "dt_growth", "density_relax", "density_passes", "density_limit", "density_descent",
                       "density_solve_tol", "density_diffusion", "density_wait", "density_probe", "density_gradient",
-                      "h", "cfl", "visc_tol" } do
+                      "visc_tol" } do
     T.checkerror("'" .. k .. "' was removed: the engine now always ", "removed option " .. k, sph.world,
                  { dx = 0.1, [k] = 1 })
   end
@@ -94,10 +94,29 @@ T.case("world arguments", function()
                "the removed option's message says what the engine does", sph.world, { dx = 0.1, solver = "jacobi" })
   T.checkerror("'visc_tol' was removed: the engine now always solves the implicit viscous step to tol",
                "visc_tol's message names the one tolerance", sph.world, { dx = 0.1, visc_tol = 1e-6 })
-  T.checkerror("'h' was removed: the engine now always takes the smoothing length h = dx", "h's message says h = dx",
-               sph.world, { dx = 0.1, h = 0.2 })
   local wh = sph.world{ dx = 0.1 }
-  T.check(wh.h == 0.1, "w.h reads the smoothing length, dx", wh.h)
+  T.check(wh.h == 0.1, "w.h reads the smoothing length, dx by default", wh.h)
+  -- h and cfl, as ../shared/DESIGN.md's sample script passes them (a stable name each)
+  T.check(sph.world{ dx = 0.1, h = 0.15 }.h == 0.15, "h = 1.5 dx is the smoothing length")
+  T.check(sph.world{ dx = 0.1, h = nil, cfl = 0.25 }.h == 0.1, "h = nil and cfl = 0.25 are the defaults")
+  T.checkerror("h must be 0 (dx) or between dx and 2 dx", "h below dx", sph.world, { dx = 0.1, h = 0.05 })
+  T.checkerror("h must be 0 (dx) or between dx and 2 dx", "h above 2 dx", sph.world, { dx = 0.1, h = 0.3 })
+  T.checkerror("cfl must be 0 (0.25) or in (0, 1]", "cfl above 1", sph.world, { dx = 0.1, cfl = 2 })
+  T.checkerror("cfl must be 0 (0.25) or in (0, 1]", "cfl negative", sph.world, { dx = 0.1, cfl = -0.1 })
+  T.checkerror("h: number expected", "h of the wrong type", sph.world, { dx = 0.1, h = "big" })
+  do -- cfl sets the speed limit of dt: a plate at speed 1 from rest, half the cfl, half the step
+    local function first_dt(cfl)
+      local w = sph.world{ dx = 0.05, cfl = cfl, density_tol = 0, threads = 1 }
+      w:fill{ rect = { 0, 0, 0.5, 0.5 }, material = sph.newtonian{ mu = 0.01 } }
+      w:plate{ rect = { -0.5, -0.2, 1, 0 } }
+      w:plate{ rect = { -0.5, 0.5, 1, 0.7 }, axis = "y" }:velocity(-1)
+      for _ = 1, 30 do w:step() end
+      return w.dt
+    end
+    local a, b = first_dt(0.25), first_dt(0.125)
+    T.check(math.abs(b / a - 0.5) < 0.05, "cfl = 0.125 takes half the step of 0.25 once the speed limit rules",
+            ("%g / %g"):format(b, a))
+  end
   -- threads are capped (SPH_MAX_THREADS): 100000 overflowed the OpenMP runtime's stack
   T.checkerror("threads must be 1..256 (0: all cores), got 100000", "threads = 100000", sph.world,
                { dx = 0.1, threads = 100000 })

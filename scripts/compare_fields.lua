@@ -1,0 +1,142 @@
+-- The square at t = 0+ against the finite-element fields of ../shared/reference-fields/
+-- (REFERENCES.md section 1): u, v, p, gammadot and the yield state at the FE grid points,
+-- by region, so that one can see where a field goes wrong, not only the plate force.
+--   build/sph scripts/compare_fields.lua [Bn=10] [n=40] [t=0.005] [threads=1] [lines=1]
+--     [ref=../shared/reference-fields]
+-- lines=1 also prints the fields along x = 0 and y = 0.5 (every 0.05), SPH / FE.
+-- An SPH value at a grid point is the Shepard (kernel-weighted) average of the fluid
+-- particles within 3 h; grid points within dx / 2 of a plate or of the free side are left
+-- out (no particle is there). The SPH sample has moved by t (plate speed 1): the grid is
+-- compared as it is, at h = 1 - t; keep t small.
+local sph = require "sph"
+local opt = ... or {}
+local Bn, n, T = opt.Bn or 10, opt.n or 40, opt.t or 0.005
+local refdir = opt.ref or "../shared/reference-fields"
+local file = refdir .. (Bn == 0 and "/square_newtonian_grid.csv" or "/square_bn10_grid.csv")
+if Bn ~= 0 and Bn ~= 10 then error("compare_fields: FE fields exist for Bn = 0 and 10 only") end
+
+local ref = {}
+do
+  local f = assert(io.open(file))
+  local header
+  for line in f:lines() do
+    if not line:match("^#") then
+      if not header then
+        header = {}
+        for name in line:gmatch("[^,]+") do header[#header + 1] = name end
+      else
+        local r, k = {}, 0
+        for v in line:gmatch("[^,]+") do k = k + 1; r[header[k]] = tonumber(v) end
+        ref[#ref + 1] = r
+      end
+    end
+  end
+  f:close()
+end
+
+local dx = 1 / n
+local w = sph.world{ dx = dx, rho = 0.05, symmetry = { x = 0 }, threads = opt.threads or 1 }
+w:fill{ rect = { 0, 0, 0.5, 1 }, material = Bn == 0 and sph.newtonian{ mu = 1 } or sph.bingham{ mu = 1, tau0 = Bn, m = 800 } }
+w:plate{ rect = { -3, -5 * dx, 3, 0 } }
+local top = w:plate{ rect = { -3, 1, 3, 1 + 5 * dx }, axis = "y" }
+top:velocity(-1)
+w:run{ until_t = T }
+
+local F = {}
+for _, name in ipairs({ "x", "y", "u", "v", "p", "gammadot", "stress", "yielded" }) do F[name] = w:field(name) end
+local h = w.h
+local cell = {}
+local function key(i, j) return i * 100003 + j end
+for k = 1, #F.x do
+  local c = key(math.floor(F.x[k] / (3 * h)), math.floor(F.y[k] / (3 * h)))
+  cell[c] = cell[c] or {}
+  table.insert(cell[c], k)
+end
+local function kern(r)
+  local s = r / h
+  if s >= 3 then return 0 end
+  local a = (3 - s) ^ 5
+  if s < 2 then a = a - 6 * (2 - s) ^ 5 end
+  if s < 1 then a = a + 15 * (1 - s) ^ 5 end
+  return a
+end
+-- Shepard average of the fields at (x, y); the mirror images across x = 0 count (u odd)
+local function sample(x, y)
+  local s, acc = 0, { u = 0, v = 0, p = 0, gammadot = 0, stress = 0 }
+  local ci, cj = math.floor(x / (3 * h)), math.floor(y / (3 * h))
+  for di = -1, 1 do
+    for dj = -1, 1 do
+      for _, k in ipairs(cell[key(ci + di, cj + dj)] or {}) do
+        for _, sg in ipairs({ 1, -1 }) do
+          local px = sg * F.x[k]
+          if sg == 1 or F.x[k] < 3 * h then
+            local wk = kern(math.sqrt((x - px) ^ 2 + (y - F.y[k]) ^ 2))
+            if wk > 0 then
+              s = s + wk
+              acc.u = acc.u + wk * sg * F.u[k]
+              for _, f in ipairs({ "v", "p", "gammadot", "stress" }) do acc[f] = acc[f] + wk * F[f][k] end
+            end
+          end
+        end
+      end
+    end
+  end
+  if s == 0 then return nil end
+  for f, v in pairs(acc) do acc[f] = v / s end
+  return acc
+end
+
+local hnow = top.position
+local regions = { "interior", "free side", "plates" }
+local stats = {}
+for _, r in ipairs(regions) do stats[r] = { n = 0, u = 0, v = 0, p = 0, g = 0, pmax = 0, gmax = 0 } end
+local un_sph, un_fe, agree, total = 0, 0, 0, 0
+for _, r in ipairs(ref) do
+  local y = r.y * hnow -- the FE square mapped onto the SPH gap
+  if r.x <= 0.5 - dx / 2 and y >= dx / 2 and y <= hnow - dx / 2 then
+    local s = sample(r.x, y)
+    if s then
+      local reg = (r.x > 0.5 - 3 * dx) and "free side" or ((y < 3 * dx or y > hnow - 3 * dx) and "plates" or "interior")
+      local st = stats[reg]
+      st.n = st.n + 1
+      st.u = st.u + (s.u - r.u) ^ 2
+      st.v = st.v + (s.v - r.v) ^ 2
+      st.p = st.p + (s.p - r.p) ^ 2
+      st.g = st.g + (s.gammadot - r.gammadot) ^ 2
+      st.pmax = math.max(st.pmax, math.abs(s.p - r.p))
+      st.gmax = math.max(st.gmax, math.abs(s.gammadot - r.gammadot))
+      if Bn > 0 then
+        local ys = s.stress > Bn and 1 or 0
+        total = total + 1
+        un_sph = un_sph + (1 - ys)
+        un_fe = un_fe + (1 - r.yielded)
+        if ys == r.yielded then agree = agree + 1 end
+      end
+    end
+  end
+end
+print(("square Bn = %g, dx = 1/%d, t = %g (h = %.4f), plate force %.4f"):format(Bn, n, w.t, hnow, -top.force))
+print("region      points  rms u    rms v    rms p    max p    rms gd   max gd")
+for _, reg in ipairs(regions) do
+  local st = stats[reg]
+  local m = math.max(st.n, 1)
+  print(("%-10s %6d  %.4f   %.4f   %.4f   %.4f   %.4f   %.4f"):format(reg, st.n, math.sqrt(st.u / m), math.sqrt(st.v / m),
+    math.sqrt(st.p / m), st.pmax, math.sqrt(st.g / m), st.gmax))
+end
+if Bn > 0 then
+  print(("unyielded share of the grid points: SPH (smoothed stress) %.3f, FE %.3f; yield flags agree at %.1f %%"):format(
+    un_sph / total, un_fe / total, 100 * agree / total))
+  local y = F.yielded
+  local u = 0
+  for k = 1, #y do if y[k] < 0.5 then u = u + 1 end end
+  print(("unyielded particles (the engine's yielded field): %d of %d (%.3f)"):format(u, #y, u / #y))
+end
+if opt.lines then
+  for _, r in ipairs(ref) do
+    local y = r.y * hnow
+    if (math.abs(r.x - 0) < 1e-9 or math.abs(r.y - 0.5) < 1e-9) and (math.floor(r.x * 80 + 0.5) % 4 == 0) and (math.floor(r.y * 80 + 0.5) % 4 == 0) and y >= dx / 2 and y <= hnow - dx / 2 and r.x <= 0.5 - dx/2 then
+      local s = sample(r.x, y)
+      if s then print(("x %.3f y %.3f  u %.4f/%.4f v %.4f/%.4f p %.3f/%.3f gd %.3f/%.3f tau %.2f/%.2f"):format(r.x, r.y, s.u, r.u, s.v, r.v, s.p, r.p, s.gammadot, r.gammadot, s.stress, r.tau)) end
+    end
+  end
+end
