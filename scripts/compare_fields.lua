@@ -4,11 +4,12 @@
 --   build/sph scripts/compare_fields.lua [Bn=10] [n=40] [t=0.005] [threads=1] [lines=1]
 --     [ref=../shared/reference-fields]
 -- lines=1 also prints the fields along x = 0 and y = 0.5 (every 0.05), SPH / FE.
--- An SPH value at a grid point is the Shepard (kernel-weighted) average of the fluid
--- particles within 3 h; grid points within dx / 2 of a plate or of the free side are left
+-- An SPH value at a grid point is the linear moving-least-squares fit of the fluid
+-- particles within 3 h (sph.flows.mls); grid points within dx / 2 of a plate or of the free side are left
 -- out (no particle is there). The SPH sample has moved by t (plate speed 1): the grid is
 -- compared as it is, at h = 1 - t; keep t small.
 local sph = require "sph"
+local flows = require "sph.flows"
 local opt = ... or {}
 local Bn, n, T = opt.Bn or 10, opt.n or 40, opt.t or 0.005
 local refdir = opt.ref or "../shared/reference-fields"
@@ -44,46 +45,27 @@ w:run{ until_t = T }
 
 local F = {}
 for _, name in ipairs({ "x", "y", "u", "v", "p", "gammadot", "stress", "yielded" }) do F[name] = w:field(name) end
-local h = w.h
-local cell = {}
-local function key(i, j) return i * 100003 + j end
+-- the particles and their mirror images across x = 0 within the fit's reach (u odd, the
+-- rest even), so that points near the symmetry plane are fitted from both sides
+local r = 3 * w.h
+local M = {}
+for _, f in ipairs({ "x", "y", "u", "v", "p", "gammadot", "stress" }) do
+  M[f] = {}
+  for k = 1, #F.x do M[f][k] = F[f][k] end
+end
 for k = 1, #F.x do
-  local c = key(math.floor(F.x[k] / (3 * h)), math.floor(F.y[k] / (3 * h)))
-  cell[c] = cell[c] or {}
-  table.insert(cell[c], k)
-end
-local function kern(r)
-  local s = r / h
-  if s >= 3 then return 0 end
-  local a = (3 - s) ^ 5
-  if s < 2 then a = a - 6 * (2 - s) ^ 5 end
-  if s < 1 then a = a + 15 * (1 - s) ^ 5 end
-  return a
-end
--- Shepard average of the fields at (x, y); the mirror images across x = 0 count (u odd)
-local function sample(x, y)
-  local s, acc = 0, { u = 0, v = 0, p = 0, gammadot = 0, stress = 0 }
-  local ci, cj = math.floor(x / (3 * h)), math.floor(y / (3 * h))
-  for di = -1, 1 do
-    for dj = -1, 1 do
-      for _, k in ipairs(cell[key(ci + di, cj + dj)] or {}) do
-        for _, sg in ipairs({ 1, -1 }) do
-          local px = sg * F.x[k]
-          if sg == 1 or F.x[k] < 3 * h then
-            local wk = kern(math.sqrt((x - px) ^ 2 + (y - F.y[k]) ^ 2))
-            if wk > 0 then
-              s = s + wk
-              acc.u = acc.u + wk * sg * F.u[k]
-              for _, f in ipairs({ "v", "p", "gammadot", "stress" }) do acc[f] = acc[f] + wk * F[f][k] end
-            end
-          end
-        end
-      end
-    end
+  if F.x[k] < r then
+    local j = #M.x + 1
+    for _, f in ipairs({ "y", "v", "p", "gammadot", "stress" }) do M[f][j] = F[f][k] end
+    M.x[j], M.u[j] = -F.x[k], -F.u[k]
   end
-  if s == 0 then return nil end
-  for f, v in pairs(acc) do acc[f] = v / s end
-  return acc
+end
+-- the fields at (x, y) by the linear moving-least-squares fit of sph.flows (the one the
+-- cavity's profiles use: first-order consistent next to the plates and the free side)
+local function sample(x, y)
+  local s = {}
+  for _, f in ipairs({ "u", "v", "p", "gammadot", "stress" }) do s[f] = flows.mls(M.x, M.y, M[f], x, y, r) end
+  return s
 end
 
 local hnow = top.position
@@ -95,7 +77,7 @@ for _, r in ipairs(ref) do
   local y = r.y * hnow -- the FE square mapped onto the SPH gap
   if r.x <= 0.5 - dx / 2 and y >= dx / 2 and y <= hnow - dx / 2 then
     local s = sample(r.x, y)
-    if s then
+    do
       local reg = (r.x > 0.5 - 3 * dx) and "free side" or ((y < 3 * dx or y > hnow - 3 * dx) and "plates" or "interior")
       local st = stats[reg]
       st.n = st.n + 1
@@ -124,7 +106,7 @@ for _, reg in ipairs(regions) do
     math.sqrt(st.p / m), st.pmax, math.sqrt(st.g / m), st.gmax))
 end
 if Bn > 0 then
-  print(("unyielded share of the grid points: SPH (smoothed stress) %.3f, FE %.3f; yield flags agree at %.1f %%"):format(
+  print(("unyielded share of the grid points: SPH (fitted stress) %.3f, FE %.3f; yield flags agree at %.1f %%"):format(
     un_sph / total, un_fe / total, 100 * agree / total))
   local y = F.yielded
   local u = 0
@@ -136,7 +118,7 @@ if opt.lines then
     local y = r.y * hnow
     if (math.abs(r.x - 0) < 1e-9 or math.abs(r.y - 0.5) < 1e-9) and (math.floor(r.x * 80 + 0.5) % 4 == 0) and (math.floor(r.y * 80 + 0.5) % 4 == 0) and y >= dx / 2 and y <= hnow - dx / 2 and r.x <= 0.5 - dx/2 then
       local s = sample(r.x, y)
-      if s then print(("x %.3f y %.3f  u %.4f/%.4f v %.4f/%.4f p %.3f/%.3f gd %.3f/%.3f tau %.2f/%.2f"):format(r.x, r.y, s.u, r.u, s.v, r.v, s.p, r.p, s.gammadot, r.gammadot, s.stress, r.tau)) end
+      do print(("x %.3f y %.3f  u %.4f/%.4f v %.4f/%.4f p %.3f/%.3f gd %.3f/%.3f tau %.2f/%.2f"):format(r.x, r.y, s.u, r.u, s.v, r.v, s.p, r.p, s.gammadot, r.gammadot, s.stress, r.tau)) end
     end
   end
 end

@@ -2,9 +2,9 @@
 -- ../shared/reference-fields (REFERENCES.md section 1), point by point, through
 -- scripts/compare_fields.lua: the velocity in the interior (more than 3 dx from the plates
 -- and the free side) and the pressure there.
--- Measured (one thread, t = 0.005, the FE grid mapped onto the gap h = 0.995): rms u / v
--- 0.0079 / 0.0103 at dx = 1/20, 0.0070 / 0.0068 at 1/40 (the FE field is at h = 1; the
--- mapping leaves about 0.005); rms p 0.269 / 0.252, mostly a uniform offset of +0.24 (7 %
+-- Measured (one thread, t = 0.005, the FE grid mapped onto the gap h = 0.995, the SPH
+-- fields fitted by sph.flows.mls): rms u / v 0.0077 / 0.0103 at dx = 1/20, 0.0070 / 0.0068
+-- at 1/40 (the FE field is at h = 1; the mapping leaves about 0.005); rms p 0.270 / 0.252, mostly a uniform offset of +0.24 (7 %
 -- of the centre pressure 3.21) set by the free side's pressure (2.38 against FE's 1.92 at
 -- x = 0.45, y = 0.5, dx = 1/40). Bounds: the 1/20 figures with a margin of about a half.
 local T = require "sph.test"
