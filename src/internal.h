@@ -16,6 +16,11 @@
  * C_s rho h^2 / eta (timestep.c). It is stable to 3.2 rho h^2 / eta (beyond, a particle-scale
  * mode of the surface row grows); 2 keeps a margin. */
 #define SPH_SURFACE_CS 2.0
+/* The default of sph_params.cfl, dt <= cfl h / max speed (timestep.c): a particle moves at
+ * most a quarter of h a step, so the neighbour list and kernel sums built at the step's
+ * start still hold at its end (the CFL limit of Morris, Fox & Zhu 1997, with the flow
+ * speed for their sound speed). A smaller cfl is a user's way to a shorter step. */
+#define SPH_CFL 0.25
 
 typedef struct sph_plate {
     double rect[4];      /* current rectangle (moves with the plate)                 */

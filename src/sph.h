@@ -42,7 +42,7 @@ typedef struct sph_params {
     double h;              /* smoothing length, the kernel's support is 3 h: 0 (the
                               default) is dx; else in [dx, 2 dx] (sph_world_h)       */
     double cfl;            /* dt <= cfl h / max speed: 0 (the default) is 0.25;
-                              else in (0, 1]                                        */
+                              else in (0, 1]; sph_world_params gives the value used  */
     double rho0;           /* reference density                                    */
     double gravity[2];     /* body force per unit mass                             */
     sph_viscosity viscosity;

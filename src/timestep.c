@@ -9,11 +9,6 @@
 #include <math.h>
 #include <stdio.h>
 
-/* C_u: a particle moves at most a quarter of h a step, so the neighbour list and kernel
- * sums built at the step's start still hold at its end (the CFL limit of Morris, Fox & Zhu
- * 1997, with the flow speed for their sound speed). It is the default of sph_params.cfl:
- * a smaller cfl is a user's way to a shorter step for time accuracy. */
-#define C_U 0.25
 /* C_f and C_eta: the force and explicit-viscosity limits of Morris, Fox & Zhu (1997). */
 #define C_FORCE 0.25
 #define C_VISC 0.125
@@ -53,8 +48,7 @@ double sph_timestep_compute(sph_world *w) {
     double g = hypot(P->gravity[0], P->gravity[1]);
     if (g > amax) amax = g;
     double dt = INFINITY;
-    double cu = P->cfl > 0 ? P->cfl : C_U;
-    if (umax > 0) dt = fmin(dt, cu * h / umax);
+    if (umax > 0) dt = fmin(dt, P->cfl * h / umax);
     if (amax > 0) dt = fmin(dt, C_FORCE * sqrt(h / amax));
     if (P->viscosity == SPH_VISC_EXPLICIT && etamax > 0 && isfinite(rhomin))
         dt = fmin(dt, C_VISC * rhomin * h * h / etamax);
@@ -76,7 +70,7 @@ double sph_timestep_compute(sph_world *w) {
         dt = fmin(dt, fmax(floor, w->dt_prev * fmax(0.8, P->density_tol / w->st.max_density_error)));
     }
     if (w->dt_prev > 0) dt = fmin(dt, DT_GROWTH * w->dt_prev);
-    if (!isfinite(dt)) dt = cu * h; /* nothing moves: a step as if |u| = 1 */
+    if (!isfinite(dt)) dt = P->cfl * h; /* nothing moves: a step as if |u| = 1 */
     return dt;
 }
 

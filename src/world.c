@@ -97,14 +97,16 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
     w->par = *p;
     w->pin = -1;
     w->dx = p->dx;
-    /* h = dx: the quintic kernel reaches 3 dx, the support every figure of the suite and
-     * of docs/validation.md was measured with (docs/method.md, "Kernel and neighbours"). */
+    /* h = dx by default: the quintic kernel reaches 3 dx, the support every figure of the
+     * suite and of docs/validation.md was measured with (docs/method.md, "Kernel and
+     * neighbours"). */
     w->h = p->h > 0 ? p->h : p->dx;
     w->eps2 = 0.01 * w->h * w->h;
     w->mass0 = p->rho0 * p->dx * p->dx;
     w->threads = p->threads > 0 ? p->threads : omp_get_num_procs();
     if (w->threads > SPH_MAX_THREADS) w->threads = SPH_MAX_THREADS; /* a machine of more cores */
     if (w->par.dt_min <= 0) w->par.dt_min = 1e-12 * w->h;
+    if (w->par.cfl <= 0) w->par.cfl = SPH_CFL;
     return w;
 }
 

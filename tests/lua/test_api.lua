@@ -105,7 +105,7 @@ T.case("world arguments", function()
   T.checkerror("cfl must be 0 (0.25) or in (0, 1]", "cfl negative", sph.world, { dx = 0.1, cfl = -0.1 })
   T.checkerror("h: number expected", "h of the wrong type", sph.world, { dx = 0.1, h = "big" })
   do -- cfl sets the speed limit of dt: a plate at speed 1 from rest, half the cfl, half the step
-    local function first_dt(cfl)
+    local function dt_after_30(cfl)
       local w = sph.world{ dx = 0.05, cfl = cfl, density_tol = 0, threads = 1 }
       w:fill{ rect = { 0, 0, 0.5, 0.5 }, material = sph.newtonian{ mu = 0.01 } }
       w:plate{ rect = { -0.5, -0.2, 1, 0 } }
@@ -113,7 +113,7 @@ T.case("world arguments", function()
       for _ = 1, 30 do w:step() end
       return w.dt
     end
-    local a, b = first_dt(0.25), first_dt(0.125)
+    local a, b = dt_after_30(0.25), dt_after_30(0.125)
     T.check(math.abs(b / a - 0.5) < 0.05, "cfl = 0.125 takes half the step of 0.25 once the speed limit rules",
             ("%g / %g"):format(b, a))
   end
