@@ -1,9 +1,10 @@
 -- The square at t = 0+ against the finite-element fields of ../shared/reference-fields/
 -- (REFERENCES.md section 1): u, v, p, gammadot and the yield state at the FE grid points,
 -- by region, so that one can see where a field goes wrong, not only the plate force.
---   build/sph scripts/compare_fields.lua [Bn=10] [n=40] [t=0.005] [threads=1] [lines=1]
+--   build/sph scripts/compare_fields.lua [Bn=10] [n=40] [t=0.005] [threads=1] [lines=1] [plate=1]
 --     [ref=../shared/reference-fields]
--- lines=1 also prints the fields along x = 0 and y = 0.5 (every 0.05), SPH / FE.
+-- lines=1 also prints the fields along x = 0 and y = 0.5 (every 0.05), SPH / FE; plate=1 the
+-- traction along the top plate (at its end).
 -- An SPH value at a grid point is the linear moving-least-squares fit of the fluid
 -- particles within 3 h (sph.flows.mls); grid points within dx / 2 of a plate or of the free side are left
 -- out (no particle is there). The SPH sample has moved by t (plate speed 1): the grid is
@@ -121,4 +122,41 @@ if opt.lines then
       do print(("x %.3f y %.3f  u %.4f/%.4f v %.4f/%.4f p %.3f/%.3f gd %.3f/%.3f tau %.2f/%.2f"):format(r.x, r.y, s.u, r.u, s.v, r.v, s.p, r.p, s.gammadot, r.gammadot, s.stress, r.tau)) end
     end
   end
+end
+-- plate=1: the traction on the top plate along x, SPH / FE. On a no-slip plate du/dx = 0, so
+-- dv/dy = 0 and -sigma_yy = p: the SPH value is the fluid pressure's linear MLS fit
+-- extrapolated to the plate face. 2 * the trapezoid integral over x <= 0.5 - dx / 2 of each
+-- says where along the plate the force is carried (the FE file is graded toward the corner).
+if opt.plate then
+  local pf = refdir .. (Bn == 0 and "/square_newtonian_plate.csv" or "/square_bn10_plate.csv")
+  local f = assert(io.open(pf))
+  local xs, ts, header = {}, {}, nil
+  for line in f:lines() do
+    if not line:match("^#") then
+      if not header then header = true
+      else
+        local a, _, c = line:match("([^,]+),([^,]+),([^,]+)")
+        xs[#xs + 1], ts[#ts + 1] = tonumber(a), tonumber(c)
+      end
+    end
+  end
+  f:close()
+  local xmax = 0.5 - dx / 2
+  local isph, ife, ife_all, prev = 0, 0, 0, nil
+  print("top plate: x, -sigma_yy SPH (fluid p extrapolated to the face) / FE")
+  for k = 1, #xs do
+    local x = xs[k]
+    local cur = { x = x, fe = ts[k], sph = x <= xmax and flows.mls(M.x, M.y, M.p, x, hnow, r) or nil }
+    if prev then
+      local dxk = cur.x - prev.x
+      ife_all = ife_all + dxk * (cur.fe + prev.fe)
+      if cur.sph then
+        isph, ife = isph + dxk * (cur.sph + prev.sph), ife + dxk * (cur.fe + prev.fe)
+      end
+    end
+    if cur.sph and k % 10 == 1 then print(("x %.4f  %.3f / %.3f"):format(x, cur.sph, cur.fe)) end
+    prev = cur
+  end
+  print(("force over x <= %.4f: SPH %.4f, FE %.4f (FE over the whole plate %.4f); engine's plate force %.4f"):format(
+    xmax, isph, ife, ife_all, -top.force))
 end
