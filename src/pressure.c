@@ -400,7 +400,7 @@ static void shepard(sph_world *w, double *p, double *pt) {
         if (!w->active[i] || (w->kind[i] == SPH_FLUID && w->surf[i])) {
             /* free surface: its n . tau . n (0 where it holds p = 0, whatever this particle's
              * pressure was before it came to the surface); inactive walls: not a pressure */
-            pt[i] = w->kind[i] == SPH_FLUID && !sph_surface_traction(w, i) ? 0.0 : p[i];
+            pt[i] = w->kind[i] == SPH_FLUID && !sph_surface_traction(w) ? 0.0 : p[i];
             continue;
         }
         double s = w->vol[i] * w0, sp = s * p[i];

@@ -29,7 +29,7 @@ double sph_timestep_compute(sph_world *w) {
         if (a > amax) amax = a;
         if (w->eta[i] > etamax) etamax = w->eta[i];
         if (w->rho[i] < rhomin) rhomin = w->rho[i];
-        if (w->surf[i] && sph_surface_traction(w, i)) {
+        if (w->surf[i] && sph_surface_traction(w)) {
             double nu = w->mats[w->mat[i]].mu / w->rho[i];
             if (nu > nus) nus = nu;
         }

@@ -80,28 +80,36 @@ void sph_viscous_rheology(sph_world *w) {
 
 
 /* The free surface is traction-free, sigma . n = 0 with sigma = -p I + tau (PHYSICS.md): its
- * normal part holds a free-surface particle at p = n . tau . n = -2 mu e, e the surface
+ * normal part holds a free-surface particle at p = n . tau . n = -2 eta e, e the surface
  * stretching of (u, v) = u* before the pressure predictor's term is taken back
  * (sph_viscous_implicit), the viscous solution under the predicted pressure (on the square
- * at Re = 0.05 it gives the side pressure of FE within 3 %). Not the particle's normal rate,
- * which holds its own velocity (its pressure then drives it, and the run diverges), nor u*
- * after the take-back (it holds + dt grad p~ / rho). Newtonian only (sph_surface_traction):
- * a viscoplastic surface's n . tau . n is +-tau0 by the sign of e, which flips particle to
- * particle with the surface rows' velocity noise and gives the plate force a standard
- * deviation of a third to a half of its mean (docs/limitations.md). */
-static void surface_pressure(sph_world *w, const double *u, const double *v) {
+ * at Re = 0.05 it gives the side pressure of FE within 3 %), eta the apparent viscosity of
+ * the rheology pass (for a yielded Bingham side, p = tau0 + mu gammadot: FE's side sits at
+ * 10.4-12.9 for Bn = 10, and without it the plate force is half FE's). Not the particle's
+ * normal rate, which holds its own velocity (its pressure then drives it, and the run
+ * diverges), nor u* after the take-back (it holds + dt grad p~ / rho). The value is explicit
+ * in eta: stable for dt up to the surface's viscous time dt_s = C_s rho h^2 / eta, which
+ * bounds dt for a Newtonian surface (timestep.c). A viscoplastic surface's eta is larger by
+ * tau0 / gammadot and would hold dt to a few 1e-6; past dt_s the pressure moves from p^n
+ * towards -2 eta e by the fraction dt_s / dt (a relaxation over dt^2 / dt_s, a few steps),
+ * which keeps the explicit step's gain at its stable limit. (The law at u*, eta(gammadot*)
+ * for the lagged eta, is noisier: square Bn = 10 at 0.94 / 0.89 of FE at dx = 1/20, 1/40.) */
+static void surface_pressure(sph_world *w, const double *u, const double *v, double dt) {
     int n = w->n;
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID || !w->surf[i]) continue;
-        if (!sph_surface_traction(w, i)) {
+        if (!sph_surface_traction(w)) {
             w->ps[i] = 0.0;
             continue;
         }
         double g[4];
         velocity_gradient(w, i, u, v, g);
         double e = surface_stretching(w, i, g);
-        w->ps[i] = -2.0 * w->mats[w->mat[i]].mu * e;
+        /* under-relaxed towards -2 eta e where dt exceeds the surface's viscous time */
+        double target = -2.0 * w->eta[i] * e;
+        double dts = SPH_SURFACE_CS * w->rho[i] * w->h * w->h / w->eta[i];
+        w->ps[i] = dts < dt ? w->p[i] + (dts / dt) * (target - w->p[i]) : target;
     }
 }
 
@@ -115,23 +123,23 @@ static void surface_pressure(sph_world *w, const double *u, const double *v) {
  * surface row runs outwards too fast (1.7 times FE's speed on the square at Re = 0.05).
  * Away from it the term is zero for constant eta (div u = 0), so it is taken only within a
  * support of the free surface; taken everywhere it adds only the kernel sums' noise (the
- * closed cavity's error against Ghia grows by a fifth). With surface_pressure (Newtonian,
- * the symmetric pressure gradient, whose push it balances). Walls carry T_i (the gradient
+ * closed cavity's error against Ghia grows by a fifth). With surface_pressure (the symmetric
+ * pressure gradient, whose push it balances), with the same apparent viscosity. Walls carry T_i (the gradient
  * continued into the plate): no boundary term there. Images: T_ab times s_a s_b. */
 static void transpose_accel(const sph_world *w, int i, double *ax, double *ay) {
     int k0 = w->nb_start[i], km = w->nb_mid[i], k1 = w->nb_start[i + 1];
     *ax = *ay = 0.0;
-    if (!sph_surface_traction(w, i)) return;
+    if (!sph_surface_traction(w)) return;
     int need = w->surf[i]; /* a free-surface particle in the support */
     for (int k = k0; k < km && !need; k++) need = w->surf[w->src[w->nb_j[k]]];
     if (!need) return;
-    double ei = w->mats[w->mat[i]].mu;
+    double ei = w->eta[i];
     double txx = ei * w->gux[i], txy = ei * w->guy[i], tyx = ei * w->gvx[i], tyy = ei * w->gvy[i];
     double fx = 0.0, fy = 0.0; /* (div T)_b = d_a T_ab */
     for (int k = k0; k < km; k++) {
         int j = w->nb_j[k], s = w->src[j];
         double sg = w->gsx[j] * w->gsy[j], c = w->vol[j];
-        double es = sph_surface_traction(w, s) ? w->mats[w->mat[s]].mu : 0.0;
+        double es = sph_surface_traction(w) ? w->eta[s] : 0.0;
         double sxx = txx + es * w->gux[s], sxy = txy + sg * es * w->guy[s];
         double syx = tyx + sg * es * w->gvx[s], syy = tyy + es * w->gvy[s];
         fx += c * (sxx * w->nb_gx[k] + syx * w->nb_gy[k]);
@@ -203,7 +211,7 @@ void sph_viscous_explicit(sph_world *w, double dt) {
     }
     sph_plate_set_viscous_forces(w, fplate);
     sph_boundary_sync(w, w->us, w->vs, 1);
-    surface_pressure(w, w->us, w->vs);
+    surface_pressure(w, w->us, w->vs, dt);
 }
 
 /* Implicit viscous step: for each velocity component,
@@ -394,7 +402,7 @@ int sph_viscous_implicit(sph_world *w, double dt) {
     w->st.visc_residual = resid;
 
     sph_boundary_sync(w, w->us, w->vs, 1);
-    surface_pressure(w, w->us, w->vs); /* the viscous solution, before the take-back */
+    surface_pressure(w, w->us, w->vs, dt); /* the viscous solution, before the take-back */
     /* walls keep their plate's velocity; the viscous force on each plate from u* */
     /* then the pressure predictor's term taken back: the projection applies the whole
      * -grad p^{n+1} / rho (the plates' viscous force is that of u* with it) */
