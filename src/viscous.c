@@ -92,7 +92,9 @@ void sph_viscous_rheology(sph_world *w) {
  * bounds dt for a Newtonian surface (timestep.c). A viscoplastic surface's eta is larger by
  * tau0 / gammadot and would hold dt to a few 1e-6; past dt_s the pressure moves from p^n
  * towards -2 eta e by the fraction dt_s / dt (a relaxation over dt^2 / dt_s, a few steps),
- * which keeps the explicit step's gain at its stable limit. (The law at u*, eta(gammadot*)
+ * which keeps the explicit step's gain at its stable limit. The fraction is at least
+ * mu / eta: the step criterion already holds the material's mu part (a Newtonian surface
+ * is never relaxed, also where the criterion saw last step's flags). (The law at u*, eta(gammadot*)
  * for the lagged eta, is noisier: square Bn = 10 at 0.94 / 0.89 of FE at dx = 1/20, 1/40.) */
 static void surface_pressure(sph_world *w, const double *u, const double *v, double dt) {
     int n = w->n;
@@ -106,10 +108,10 @@ static void surface_pressure(sph_world *w, const double *u, const double *v, dou
         double g[4];
         velocity_gradient(w, i, u, v, g);
         double e = surface_stretching(w, i, g);
-        /* under-relaxed towards -2 eta e where dt exceeds the surface's viscous time */
+        /* relaxed towards -2 eta e where dt exceeds the surface's viscous time */
         double target = -2.0 * w->eta[i] * e;
-        double dts = SPH_SURFACE_CS * w->rho[i] * w->h * w->h / w->eta[i];
-        w->ps[i] = dts < dt ? w->p[i] + (dts / dt) * (target - w->p[i]) : target;
+        double al = fmax(SPH_SURFACE_CS * w->rho[i] * w->h * w->h / (w->eta[i] * dt), w->mats[w->mat[i]].mu / w->eta[i]);
+        w->ps[i] = al < 1.0 ? w->p[i] + al * (target - w->p[i]) : target;
     }
 }
 
