@@ -7,19 +7,25 @@
 local sph = require "sph"
 local T = require "sph.test"
 
-local function square(n)
+local FV = require("sph.references").FV
+
+-- F / F_FE(h) averaged over the window, its spread, the steps; Bn = 0: Newtonian, else
+-- Papanastasiou-Bingham tau0 = Bn, m = 800
+local function square(n, Bn)
+  Bn = Bn or 0
   local dx = 1 / n
   local w = sph.world{ dx = dx, rho = 0.05, symmetry = { x = 0 }, threads = 1 }
-  w:fill{ rect = {0, 0, 0.5, 1}, material = sph.newtonian{ mu = 1 } }
+  w:fill{ rect = {0, 0, 0.5, 1}, material = Bn == 0 and sph.newtonian{ mu = 1 } or sph.bingham{ mu = 1, tau0 = Bn, m = 800 } }
   w:plate{ rect = {-3, -5 * dx, 3, 0} }
   local top = w:plate{ rect = {-3, 1, 3, 1 + 5 * dx}, axis = "y" }
   top:velocity(-1)
-  local k = math.log(10.2585 / 5.2493) / -math.log(0.8)
+  local f1, f8 = FV[Bn][1], FV[Bn][2]
+  local k = math.log(f8 / f1) / -math.log(0.8)
   local s, s2, m = 0, 0, 0
   while w.t < 0.02 do
     w:step()
     if w.t > 0.005 then
-      local r = top.force / (5.2493 * top.position ^ -k)
+      local r = math.abs(top.force) / (f1 * top.position ^ -k)
       s, s2, m = s + r, s2 + r * r, m + 1
     end
   end
@@ -44,6 +50,31 @@ T.case("Newtonian square at t = 0+ against FE, converging", function()
   local order = math.log(errs[1] / errs[3]) / math.log(4)
   print(string.format("# square: observed order %.2f from dx = 1/20 to 1/80", order))
   T.check(order >= 1, "square: observed order at least 1 from dx = 1/20 to 1/80", string.format("order %.2f", order))
+end)
+
+T.case("Bingham square at t = 0+ against FE (Bn = 10, 1000), converging", function()
+  -- The Bingham free surface at p = n . tau . n (tau0 + mu gammadot on the stretching side;
+  -- with p = 0 the force was 0.52 / 0.57 of FE at Bn = 10 and 0.39 / 0.50 at Bn = 1000).
+  -- Measured (one thread), F / F_FE at dx = 1/20, 1/40 (1/80 in make validate):
+  --   Bn = 10:   0.8777 / 0.9603 (0.9940): errors 0.122 / 0.040, order 1.6; spread 0.002
+  --   Bn = 1000: 0.6397 / 0.8232 (0.8453): errors 0.360 / 0.177, order 1.0; spread 0.035 / 0.015
+  -- Bounds: the errors at 1.25 x the measured, an order of at least 1 at Bn = 10 (0.8 at
+  -- Bn = 1000, whose order falls to 0.2 past 1/40), the spread under 0.02 / 0.05.
+  for _, c in ipairs{ { Bn = 10, bounds = { 0.153, 0.050 }, order = 1, sd = 0.02 },
+                      { Bn = 1000, bounds = { 0.45, 0.22 }, order = 0.8, sd = 0.05 } } do
+    local errs = {}
+    for k, n in ipairs{ 20, 40 } do
+      local r, sd, steps = square(n, c.Bn)
+      errs[k] = math.abs(r - 1)
+      print(string.format("# square Bn = %g, dx = 1/%d: F / F_FE %.4f (spread %.4f), %d steps", c.Bn, n, r, sd, steps))
+      T.below(errs[k], c.bounds[k], string.format("square Bn = %g, dx = 1/%d: the plate force within %g of FE", c.Bn, n, c.bounds[k]))
+      T.below(sd, c.sd, string.format("square Bn = %g, dx = 1/%d: the force's spread over the window under %g", c.Bn, n, c.sd))
+    end
+    local order = math.log(errs[1] / errs[2]) / math.log(2)
+    print(string.format("# square Bn = %g: observed order %.2f from dx = 1/20 to 1/40", c.Bn, order))
+    T.check(order >= c.order, string.format("square Bn = %g: observed order at least %g from dx = 1/20 to 1/40", c.Bn, c.order),
+            string.format("order %.2f", order))
+  end
 end)
 
 T.done()
