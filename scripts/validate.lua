@@ -19,6 +19,7 @@
 local sph = require "sph"
 local squeeze = require "sph.squeeze"
 local flows = require "sph.flows"
+local squeeze_validation = require "sph.squeeze_validation"
 local opt = ... or {}
 local out = opt.out or "docs"
 local threads = opt.threads or 1
@@ -87,30 +88,14 @@ local timing = {} -- { section, seconds }
 -- unyielded area fraction at h = 1 (FE, not mesh-converged at Bn = 10: 0.11-0.13).
 local refs = require "sph.references"
 local REF = {
-  { Bn = 0, f1 = refs.FV[0][1], f8 = refs.FV[0][2], unyielded = 0 },
-  { Bn = 10, f1 = refs.FV[10][1], f8 = refs.FV[10][2], unyielded = 0.12 },
-  { Bn = 1000, f1 = refs.FV[1000][1], f8 = refs.FV[1000][2], unyielded = 0.50 },
+  { Bn = 0, unyielded = 0 },
+  { Bn = 10, unyielded = 0.12 },
+  { Bn = 1000, unyielded = 0.50 },
 }
 
--- mean F / F_FE(h) over t in (0.005, 0.02), after the impulsive start's transient
+-- F / F_FE at t = 0+ (sph.squeeze_validation.square_t0), the world kept in rec
 local function square(rec, c, n)
-  local dx = 1 / n
-  local w = sph.world{ dx = dx, rho = 0.05, symmetry = { x = 0 }, threads = threads }
-  rec.w = w
-  local mat = c.Bn == 0 and sph.newtonian{ mu = 1 } or sph.bingham{ mu = 1, tau0 = c.Bn, m = 800 }
-  w:fill{ rect = {0, 0, 0.5, 1}, material = mat }
-  w:plate{ rect = {-3, -5 * dx, 3, 0} }
-  local top = w:plate{ rect = {-3, 1, 3, 1 + 5 * dx}, axis = "y" }
-  top:velocity(-1)
-  local k = math.log(c.f8 / c.f1) / -math.log(0.8)
-  local s, m = 0, 0
-  while w.t < 0.02 do
-    w:step()
-    if w.t > 0.005 then s = s + math.abs(top.force) / (c.f1 * top.position ^ -k); m = m + 1 end
-  end
-  local y, un = w:field("yielded"), 0
-  for i = 1, #y do if y[i] < 0.5 then un = un + 1 end end
-  return { ratio = s / m, unyielded = un / #y, steps = w.steps, cpu = w:stats().wall_time, particles = #y }
+  return squeeze_validation.square_t0(n, c.Bn, { threads = threads, on_world = function(w) rec.w = w end })
 end
 
 local function section1()

@@ -33,8 +33,44 @@
 --                                     whose plastic limit is F = 2 tau0 a^2 / h = tau0 / (2 h^3);
 --                                     under a load, its force at the run's own (h, V).
 local squeeze = require "sph.squeeze"
+local sph = require "sph"
+local refs = require "sph.references"
 
 local M = {}
+
+-- The square at t = 0+ against FE (REFERENCES.md section 1): the half square 2a = H = 1,
+-- V = -1, Re = 0.05 (rho), mu = 1, Newtonian (Bn = 0) or Papanastasiou-Bingham tau0 = Bn,
+-- m = 800, one dx per 1/n. F / F_FE(h) averaged over t in (0.005, 0.02), after the
+-- impulsive start's transient, F_FE at the current gap from refs.FV (ln F linear in ln h
+-- between the square and the rectangle at h = 0.8). opts: threads (1), on_world(w) (called
+-- as soon as the world exists: a caller that catches an engine error still has it).
+-- Returns { ratio, spread, steps, cpu, unyielded (the share of unyielded particles at the
+-- end), particles }.
+function M.square_t0(n, Bn, opts)
+  opts = opts or {}
+  local dx = 1 / n
+  local w = sph.world{ dx = dx, rho = 0.05, symmetry = { x = 0 }, threads = opts.threads or 1 }
+  if opts.on_world then opts.on_world(w) end
+  w:fill{ rect = {0, 0, 0.5, 1}, material = Bn == 0 and sph.newtonian{ mu = 1 } or sph.bingham{ mu = 1, tau0 = Bn, m = 800 } }
+  w:plate{ rect = {-3, -5 * dx, 3, 0} }
+  local top = w:plate{ rect = {-3, 1, 3, 1 + 5 * dx}, axis = "y" }
+  top:velocity(-1)
+  local f1, f8 = refs.FV[Bn][1], refs.FV[Bn][2]
+  local k = math.log(f8 / f1) / -math.log(0.8)
+  local s, s2, m = 0, 0, 0
+  while w.t < 0.02 do
+    w:step()
+    if w.t > 0.005 then
+      local r = math.abs(top.force) / (f1 * top.position ^ -k)
+      s, s2, m = s + r, s2 + r * r, m + 1
+    end
+  end
+  local y, un = w:field("yielded"), 0
+  for i = 1, #y do if y[i] < 0.5 then un = un + 1 end end
+  local mean = s / m
+  return { ratio = mean, spread = math.sqrt(math.max(0, s2 / m - mean * mean)), steps = w.steps,
+           cpu = w:stats().wall_time, unyielded = un / #y, particles = #y }
+end
 
 -- Thin-film Bingham squeeze of a sample of area A (default 1) at closing speed V: at
 -- every x the film carries the flux q = V x (half sample) as a Bingham plane Poiseuille

@@ -1,36 +1,15 @@
--- The Newtonian square at t = 0+ against finite elements (../shared/REFERENCES.md section 1):
+-- The square at t = 0+ (Newtonian, and Bingham below) against finite elements (../shared/REFERENCES.md section 1):
 -- the half square 2a = H = 1, V = -1, Re = 0.05, the plate force averaged over t in
 -- (0.005, 0.02), after the impulsive start's transient, against the FE force at the current
 -- gap (ln F linear in ln h between the square, 5.2493, and the rectangle at h = 0.8,
 -- 10.2585). The free surface is traction-free (p = n . tau . n): with p = 0 the force is
 -- 0.55 / 0.59 / 0.61 of FE and does not converge.
-local sph = require "sph"
 local T = require "sph.test"
 
-local FV = require("sph.references").FV
-
--- F / F_FE(h) averaged over the window, its spread, the steps; Bn = 0: Newtonian, else
--- Papanastasiou-Bingham tau0 = Bn, m = 800
+-- F / F_FE averaged over the window, its spread, the steps (sph.squeeze_validation)
 local function square(n, Bn)
-  Bn = Bn or 0
-  local dx = 1 / n
-  local w = sph.world{ dx = dx, rho = 0.05, symmetry = { x = 0 }, threads = 1 }
-  w:fill{ rect = {0, 0, 0.5, 1}, material = Bn == 0 and sph.newtonian{ mu = 1 } or sph.bingham{ mu = 1, tau0 = Bn, m = 800 } }
-  w:plate{ rect = {-3, -5 * dx, 3, 0} }
-  local top = w:plate{ rect = {-3, 1, 3, 1 + 5 * dx}, axis = "y" }
-  top:velocity(-1)
-  local f1, f8 = FV[Bn][1], FV[Bn][2]
-  local k = math.log(f8 / f1) / -math.log(0.8)
-  local s, s2, m = 0, 0, 0
-  while w.t < 0.02 do
-    w:step()
-    if w.t > 0.005 then
-      local r = math.abs(top.force) / (f1 * top.position ^ -k)
-      s, s2, m = s + r, s2 + r * r, m + 1
-    end
-  end
-  local mean = s / m
-  return mean, math.sqrt(math.max(0, s2 / m - mean * mean)), w.steps
+  local r = require("sph.squeeze_validation").square_t0(n, Bn or 0)
+  return r.ratio, r.spread, r.steps
 end
 
 T.case("Newtonian square at t = 0+ against FE, converging", function()
