@@ -94,8 +94,9 @@ void sph_viscous_rheology(sph_world *w) {
  * towards -2 eta e by the fraction dt_s / dt (a relaxation over dt^2 / dt_s, a few steps),
  * which keeps the explicit step's gain at its stable limit. The fraction is at least
  * mu / eta: the step criterion already holds the material's mu part (a Newtonian surface
- * is never relaxed, also where the criterion saw last step's flags). (The law at u*, eta(gammadot*)
- * for the lagged eta, is noisier: square Bn = 10 at 0.94 / 0.89 of FE at dx = 1/20, 1/40.) */
+ * is never relaxed, also where the criterion saw last step's flags). The law at u*,
+ * eta(gammadot*) for the lagged eta, is noisier: square Bn = 10 at 0.94 / 0.89 of FE at
+ * dx = 1/20, 1/40. */
 static void surface_pressure(sph_world *w, const double *u, const double *v, double dt) {
     int n = w->n;
 #pragma omp parallel for schedule(static) num_threads(w->threads)
@@ -109,8 +110,8 @@ static void surface_pressure(sph_world *w, const double *u, const double *v, dou
         velocity_gradient(w, i, u, v, g);
         double e = surface_stretching(w, i, g);
         /* relaxed towards -2 eta e where dt exceeds the surface's viscous time */
-        double target = -2.0 * w->eta[i] * e;
-        double al = fmax(SPH_SURFACE_CS * w->rho[i] * w->h * w->h / (w->eta[i] * dt), w->mats[w->mat[i]].mu / w->eta[i]);
+        double eta = w->eta[i], target = -2.0 * eta * e;
+        double al = fmax(SPH_SURFACE_CS * w->rho[i] * w->h * w->h / (eta * dt), w->mats[w->mat[i]].mu / eta);
         w->ps[i] = al < 1.0 ? w->p[i] + al * (target - w->p[i]) : target;
     }
 }
@@ -126,8 +127,9 @@ static void surface_pressure(sph_world *w, const double *u, const double *v, dou
  * Away from it the term is zero for constant eta (div u = 0), so it is taken only within a
  * support of the free surface; taken everywhere it adds only the kernel sums' noise (the
  * closed cavity's error against Ghia grows by a fifth). With surface_pressure (the symmetric
- * pressure gradient, whose push it balances), with the same apparent viscosity. Walls carry T_i (the gradient
- * continued into the plate): no boundary term there. Images: T_ab times s_a s_b. */
+ * pressure gradient, whose push it balances), with the same apparent viscosity. Walls carry
+ * T_i (the gradient continued into the plate): no boundary term there. Images: T_ab times
+ * s_a s_b. */
 static void transpose_accel(const sph_world *w, int i, double *ax, double *ay) {
     int k0 = w->nb_start[i], km = w->nb_mid[i], k1 = w->nb_start[i + 1];
     *ax = *ay = 0.0;
@@ -141,7 +143,7 @@ static void transpose_accel(const sph_world *w, int i, double *ax, double *ay) {
     for (int k = k0; k < km; k++) {
         int j = w->nb_j[k], s = w->src[j];
         double sg = w->gsx[j] * w->gsy[j], c = w->vol[j];
-        double es = sph_surface_traction(w) ? w->eta[s] : 0.0;
+        double es = w->eta[s];
         double sxx = txx + es * w->gux[s], sxy = txy + sg * es * w->guy[s];
         double syx = tyx + sg * es * w->gvx[s], syy = tyy + es * w->gvy[s];
         fx += c * (sxx * w->nb_gx[k] + syx * w->nb_gy[k]);
