@@ -17,10 +17,11 @@ local refdir = opt.ref or "../shared/reference-fields"
 local file = refdir .. (Bn == 0 and "/square_newtonian_grid.csv" or "/square_bn10_grid.csv")
 if Bn ~= 0 and Bn ~= 10 then error("compare_fields: FE fields exist for Bn = 0 and 10 only") end
 
-local ref = {}
-do
-  local f = assert(io.open(file))
-  local header
+-- The rows of a reference CSV: `#` comment lines, a header line, numbers; each row a table
+-- keyed by the header's names.
+local function read_csv(path)
+  local rows, header = {}, nil
+  local f = assert(io.open(path))
   for line in f:lines() do
     if not line:match("^#") then
       if not header then
@@ -29,12 +30,14 @@ do
       else
         local r, k = {}, 0
         for v in line:gmatch("[^,]+") do k = k + 1; r[header[k]] = tonumber(v) end
-        ref[#ref + 1] = r
+        rows[#rows + 1] = r
       end
     end
   end
   f:close()
+  return rows
 end
+local ref = read_csv(file)
 
 local dx = 1 / n
 local w = sph.world{ dx = dx, rho = 0.05, symmetry = { x = 0 }, threads = opt.threads or 1 }
@@ -128,25 +131,13 @@ end
 -- extrapolated to the plate face. 2 * the trapezoid integral over x <= 0.5 - dx / 2 of each
 -- says where along the plate the force is carried (the FE file is graded toward the corner).
 if opt.plate then
-  local pf = refdir .. (Bn == 0 and "/square_newtonian_plate.csv" or "/square_bn10_plate.csv")
-  local f = assert(io.open(pf))
-  local xs, ts, header = {}, {}, nil
-  for line in f:lines() do
-    if not line:match("^#") then
-      if not header then header = true
-      else
-        local a, _, c = line:match("([^,]+),([^,]+),([^,]+)")
-        xs[#xs + 1], ts[#ts + 1] = tonumber(a), tonumber(c)
-      end
-    end
-  end
-  f:close()
+  local plate = read_csv(refdir .. (Bn == 0 and "/square_newtonian_plate.csv" or "/square_bn10_plate.csv"))
   local xmax = 0.5 - dx / 2
   local isph, ife, ife_all, prev = 0, 0, 0, nil
   print("top plate: x, -sigma_yy SPH (fluid p extrapolated to the face) / FE")
-  for k = 1, #xs do
-    local x = xs[k]
-    local cur = { x = x, fe = ts[k], sph = x <= xmax and flows.mls(M.x, M.y, M.p, x, hnow, r) or nil }
+  for k, row in ipairs(plate) do
+    local x = row.x
+    local cur = { x = x, fe = row["-sigma_yy"], sph = x <= xmax and flows.mls(M.x, M.y, M.p, x, hnow, r) or nil }
     if prev then
       local dxk = cur.x - prev.x
       ife_all = ife_all + dxk * (cur.fe + prev.fe)
