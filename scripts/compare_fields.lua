@@ -1,9 +1,9 @@
 -- The square at t = 0+ against the finite-element fields of ../shared/reference-fields/
 -- (REFERENCES.md section 1): u, v, p, gammadot and the yield state at the FE grid points,
 -- by region, so that one can see where a field goes wrong, not only the plate force.
---   build/sph scripts/compare_fields.lua [Bn=10] [n=40] [t=0.005] [threads=1] [lines=1] [plate=1]
+--   build/sph scripts/compare_fields.lua [Bn=10] [n=40] [t=0.005] [threads=1] [lines=1] [plate=1] [dt_max=]
 --     [ref=../shared/reference-fields]
--- lines=1 also prints the fields along x = 0 and y = 0.5 (every 0.05), SPH / FE; plate=1 the
+-- lines=1 also prints the fields along x = 0 and y = 0.5 (or liney=, every 0.05), SPH / FE; plate=1 the
 -- traction along the top plate (at its end).
 -- An SPH value at a grid point is the linear moving-least-squares fit of the fluid
 -- particles within 3 h (sph.flows.mls); grid points within dx / 2 of a plate or of the free side are left
@@ -40,7 +40,7 @@ end
 local ref = read_csv(file)
 
 local dx = 1 / n
-local w = sph.world{ dx = dx, rho = 0.05, symmetry = { x = 0 }, threads = opt.threads or 1 }
+local w = sph.world{ dx = dx, rho = 0.05, symmetry = { x = 0 }, threads = opt.threads or 1, dt_max = opt.dt_max }
 w:fill{ rect = { 0, 0, 0.5, 1 }, material = Bn == 0 and sph.newtonian{ mu = 1 } or sph.bingham{ mu = 1, tau0 = Bn, m = 800 } }
 w:plate{ rect = { -3, -5 * dx, 3, 0 } }
 local top = w:plate{ rect = { -3, 1, 3, 1 + 5 * dx }, axis = "y" }
@@ -120,7 +120,7 @@ end
 if opt.lines then
   for _, r in ipairs(ref) do
     local y = r.y * hnow
-    if (math.abs(r.x - 0) < 1e-9 or math.abs(r.y - 0.5) < 1e-9) and (math.floor(r.x * 80 + 0.5) % 4 == 0) and (math.floor(r.y * 80 + 0.5) % 4 == 0) and y >= dx / 2 and y <= hnow - dx / 2 and r.x <= 0.5 - dx/2 then
+    if (math.abs(r.x - 0) < 1e-9 or math.abs(r.y - (opt.liney or 0.5)) < 1e-9) and (math.floor(r.x * 80 + 0.5) % 4 == 0) and (math.floor(r.y * 80 + 0.5) % 4 == 0) and y >= dx / 2 and y <= hnow - dx / 2 and r.x <= 0.5 - dx/2 then
       local s = sample(r.x, y)
       do print(("x %.3f y %.3f  u %.4f/%.4f v %.4f/%.4f p %.3f/%.3f gd %.3f/%.3f tau %.2f/%.2f"):format(r.x, r.y, s.u, r.u, s.v, r.v, s.p, r.p, s.gammadot, r.gammadot, s.stress, r.tau)) end
     end
