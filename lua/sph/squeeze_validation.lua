@@ -42,14 +42,15 @@ local M = {}
 -- V = -1, Re = 0.05 (rho), mu = 1, Newtonian (Bn = 0) or Papanastasiou-Bingham tau0 = Bn,
 -- m = 800, one dx per 1/n. F / F_FE(h) averaged over t in (0.005, 0.02), after the
 -- impulsive start's transient, F_FE at the current gap from refs.FV (ln F linear in ln h
--- between the square and the rectangle at h = 0.8). opts: threads (1), on_world(w) (called
--- as soon as the world exists: a caller that catches an engine error still has it).
+-- between the square and the rectangle at h = 0.8). opts: threads (1), dt_max (none: the
+-- engine's step), on_world(w) (called as soon as the world exists: a caller that catches an
+-- engine error still has it).
 -- Returns { ratio, spread, steps, cpu, unyielded (the share of unyielded particles at the
 -- end), particles }.
 function M.square_t0(n, Bn, opts)
   opts = opts or {}
   local dx = 1 / n
-  local w = sph.world{ dx = dx, rho = 0.05, symmetry = { x = 0 }, threads = opts.threads or 1 }
+  local w = sph.world{ dx = dx, rho = 0.05, symmetry = { x = 0 }, threads = opts.threads or 1, dt_max = opts.dt_max }
   if opts.on_world then opts.on_world(w) end
   w:fill{ rect = {0, 0, 0.5, 1}, material = Bn == 0 and sph.newtonian{ mu = 1 } or sph.bingham{ mu = 1, tau0 = Bn, m = 800 } }
   w:plate{ rect = {-3, -5 * dx, 3, 0} }
