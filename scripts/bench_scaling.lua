@@ -141,21 +141,17 @@ for _, r in ipairs(rungs) do
   local steps = math.floor(o.steps or 60)
   local byt = {}
   for _, t in ipairs(threads) do byt[t] = {} end
-  local err
-  for _ = 1, runs do
-    for _, t in ipairs(threads) do
-      local ok, res = pcall(one_run, r, t, steps)
-      if not ok then err = string.format("1/%-5.5g %9d %3d FAILED: %s", r.k, r.particles, t, tostring(res)) break end
-      byt[t][#byt[t] + 1] = res
+  local ok, err = pcall(function()
+    for _ = 1, runs do
+      for _, t in ipairs(threads) do byt[t][#byt[t] + 1] = one_run(r, t, steps) end
     end
-    if err then break end
-  end
-  if err then
+  end)
+  if not ok then
     failed = failed + 1
-    print(err)
+    print(string.format("1/%-5.5g %9d     FAILED: %s", r.k, r.particles, tostring(err)))
     io.stdout:flush()
   end
-  for _, t in ipairs(err and {} or threads) do
+  for _, t in ipairs(ok and threads or {}) do
     local list = byt[t]
     local ns = {}
     for i, x in ipairs(list) do ns[i] = x.ns end

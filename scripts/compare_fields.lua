@@ -9,7 +9,6 @@
 -- particles within 3 h (sph.flows.mls); grid points within dx / 2 of a plate or of the free side are left
 -- out (no particle is there). The SPH sample has moved by t (plate speed 1): the grid is
 -- compared as it is, at h = 1 - t; keep t small.
-local sph = require "sph"
 local flows = require "sph.flows"
 local opt = ... or {}
 local Bn, n, T = opt.Bn or 10, opt.n or 40, opt.t or 0.005
@@ -40,11 +39,7 @@ end
 local ref = read_csv(file)
 
 local dx = 1 / n
-local w = sph.world{ dx = dx, rho = 0.05, symmetry = { x = 0 }, threads = opt.threads or 1, dt_max = opt.dt_max }
-w:fill{ rect = { 0, 0, 0.5, 1 }, material = Bn == 0 and sph.newtonian{ mu = 1 } or sph.bingham{ mu = 1, tau0 = Bn, m = 800 } }
-w:plate{ rect = { -3, -5 * dx, 3, 0 } }
-local top = w:plate{ rect = { -3, 1, 3, 1 + 5 * dx }, axis = "y" }
-top:velocity(-1)
+local w, top = require("sph.squeeze_validation").square_world(n, Bn, { threads = opt.threads, dt_max = opt.dt_max })
 w:run{ until_t = T }
 
 local F = {}

@@ -6,12 +6,7 @@
 -- c: the caps, dt_max = c rho h^2 / mu (rho = 0.05, mu = 1, h = dx); the engine's step
 -- limit on a Newtonian free surface is c = 2.
 local sv = require "sph.squeeze_validation"
-local o = {}
-for _, a in ipairs(arg) do
-  local k, v = a:match("^(%w+)=(.*)$")
-  if not k then error("square_dt: arguments are name=value, got '" .. a .. "'", 0) end
-  o[k] = v
-end
+local o = ... or {}
 local Bn = tonumber(o.Bn or 0)
 local function list(s, what)
   local t = {}

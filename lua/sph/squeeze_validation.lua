@@ -38,16 +38,12 @@ local refs = require "sph.references"
 
 local M = {}
 
--- The square at t = 0+ against FE (REFERENCES.md section 1): the half square 2a = H = 1,
--- V = -1, Re = 0.05 (rho), mu = 1, Newtonian (Bn = 0) or Papanastasiou-Bingham tau0 = Bn,
--- m = 800, one dx per 1/n. F / F_FE(h) averaged over t in (0.005, 0.02), after the
--- impulsive start's transient, F_FE at the current gap from refs.FV (ln F linear in ln h
--- between the square and the rectangle at h = 0.8). opts: threads (1), dt_max (none: the
--- engine's step), on_world(w) (called as soon as the world exists: a caller that catches an
--- engine error still has it).
--- Returns { ratio, spread, steps, cpu, unyielded (the share of unyielded particles at the
--- end), particles }.
-function M.square_t0(n, Bn, opts)
+-- The square of REFERENCES.md section 1 as a world, before its first step: the half square
+-- 0 <= x <= 0.5, 0 <= y <= 1 (symmetry plane x = 0), rho = 0.05 (Re), mu = 1, Newtonian
+-- (Bn = 0) or Papanastasiou-Bingham tau0 = Bn, m = 800, a fixed lower plate and the upper one
+-- at V = -1. opts: threads (1), dt_max, on_world(w) (called as soon as the world exists).
+-- Returns the world and the upper plate.
+function M.square_world(n, Bn, opts)
   opts = opts or {}
   local dx = 1 / n
   local w = sph.world{ dx = dx, rho = 0.05, symmetry = { x = 0 }, threads = opts.threads or 1, dt_max = opts.dt_max }
@@ -56,6 +52,19 @@ function M.square_t0(n, Bn, opts)
   w:plate{ rect = {-3, -5 * dx, 3, 0} }
   local top = w:plate{ rect = {-3, 1, 3, 1 + 5 * dx}, axis = "y" }
   top:velocity(-1)
+  return w, top
+end
+
+-- The square at t = 0+ against FE (REFERENCES.md section 1), M.square_world at dx = 1/n:
+-- F / F_FE(h) averaged over t in (0.005, 0.02), after the
+-- impulsive start's transient, F_FE at the current gap from refs.FV (ln F linear in ln h
+-- between the square and the rectangle at h = 0.8). opts as M.square_world's (on_world: a
+-- caller that catches an engine error still has the world; dt_max none: the engine's step).
+-- Returns { ratio, spread, steps, cpu, unyielded (the share of unyielded particles at the
+-- end), particles }.
+function M.square_t0(n, Bn, opts)
+  opts = opts or {}
+  local w, top = M.square_world(n, Bn, opts)
   local f1, f8 = refs.FV[Bn][1], refs.FV[Bn][2]
   local k = math.log(f8 / f1) / -math.log(0.8)
   local s, s2, m = 0, 0, 0

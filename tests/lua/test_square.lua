@@ -5,10 +5,11 @@
 -- 10.2585). The free surface is traction-free (p = n . tau . n): with p = 0 the force is
 -- 0.55 / 0.59 / 0.61 of FE and does not converge.
 local T = require "sph.test"
+local square_t0 = require("sph.squeeze_validation").square_t0
 
--- F / F_FE averaged over the window, its spread, the steps (sph.squeeze_validation)
+-- F / F_FE averaged over the window, its spread, the steps
 local function square(n, Bn)
-  local r = require("sph.squeeze_validation").square_t0(n, Bn or 0)
+  local r = square_t0(n, Bn or 0)
   return r.ratio, r.spread, r.steps
 end
 
