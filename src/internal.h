@@ -12,10 +12,12 @@
 #define SPH_MAX_MATERIALS 64
 #define SPH_MAX_PLATES 64
 #define SPH_MAX_LOADED 4 /* plates under a load law, coupled implicitly */
-/* C_s: the free surface's stress is explicit (viscous.c, surface_pressure), so dt <=
- * C_s rho h^2 / eta (timestep.c). It is stable to 3.2 rho h^2 / eta (beyond, a particle-scale
- * mode of the surface row grows); 2 keeps a margin. */
-#define SPH_SURFACE_CS 2.0
+/* C_s: dt <= C_s rho h^2 / mu on a traction-free surface (timestep.c), a time-accuracy limit.
+ * The split step's steady state is off by a term in mu dt / (rho h^2) (the projection's
+ * divergence residual (dt / rho)(L - D G) p, largest in the pressure layer along the free
+ * side): the square's force at t = 0+ is 4 % high at C_s = 2 and within 0.3-0.7 % of its
+ * converged-step value at 0.25 (docs/limitations.md). Stability alone would allow 3.2. */
+#define SPH_SURFACE_CS 0.25
 /* The default of sph_params.cfl, dt <= cfl h / max speed (timestep.c): a particle moves at
  * most a quarter of h a step, so the neighbour list and kernel sums built at the step's
  * start still hold at its end (the CFL limit of Morris, Fox & Zhu 1997, with the flow
@@ -43,7 +45,7 @@ typedef struct sph_plate {
 
 struct sph_world {
     sph_params par;
-    double h, dx, eps2, mass0;
+    double h, dx, mass0;
     int threads;
     char err[1024];
 
@@ -59,6 +61,9 @@ struct sph_world {
     double *gm;                /* the GMRES density correction's vectors (density.c)  */
     size_t gm_len;             /* doubles in gm                                      */
     double *eta, *gd, *divr;   /* apparent viscosity, shear rate, position div      */
+    double *visc;              /* the viscous operator's viscosity (viscous.c)       */
+    double *lamxx, *lamxy;     /* stress multiplier (deviatoric: lam_yy = -lam_xx)   */
+    double *sxx, *sxy;         /* this step's explicit stress lam - 2 visc gamma     */
     double *lxx, *lxy, *lyy;   /* kernel-gradient renormalisation (Bonet & Lok 1999) */
     double *gux, *guy, *gvx, *gvy; /* velocity gradient (du/dx, du/dy, dv/dx, dv/dy)  */
     double *xs, *ys;           /* scratch (reordering, shifting displacements)       */
@@ -89,7 +94,7 @@ struct sph_world {
     int *nb_start;             /* n + 1                                             */
     int *nb_j;
     double *nb_gx, *nb_gy;     /* grad_i W_ij                                       */
-    double *nb_f;              /* r_ij . grad_i W_ij / (r_ij^2 + eps^2)             */
+    double *nb_f;              /* r_ij . grad_i W_ij / r_ij^2 = (dW/dr) / r         */
     double *nb_w;              /* W_ij (the pressure predictor's Shepard average)   */
     long nb_cap;
     int nb_n;                  /* the particle count the lists were built for (-1 from the
@@ -172,8 +177,9 @@ void sph_boundary_sync(sph_world *w, double *a, double *b, int vector);
 
 /* plates.c */
 int sph_plate_fill(sph_world *w, const double rect[4], int axis);
-/* No-slip factor beta = 1 + dB/da (clamped) for fluid a and wall particle b. */
-double sph_plate_noslip(const sph_world *w, int a, int b);
+/* No-slip factor beta = 1 + dB/da (clamped) for fluid a and wall particle b; *normal: the
+ * axis of the normal of the face nearest to a (0: x, 1: y). */
+double sph_plate_noslip(const sph_world *w, int a, int b, int *normal);
 /* Velocity of wall particle b along x, y. */
 void sph_plate_wall_velocity(const sph_world *w, int b, double *vx, double *vy);
 void sph_plate_rigid_velocity(const sph_world *w, int b, double *vx, double *vy);
@@ -191,16 +197,16 @@ int sph_plate_loaded_velocities(sph_world *w, double dt, int K, const int *loade
                                 double (*Fk)[SPH_MAX_PLATES], double *x);
 void sph_plate_set_viscous_forces(sph_world *w, const double *f);
 /* The force along its axis that this pair puts on wall j's plate (0 for a fixed plate). */
-static inline double sph_plate_pull(const sph_world *w, int i, int j, double cw, double ui, double vi,
+static inline double sph_plate_pull(const sph_world *w, int i, int j, double cu, double cv, double ui, double vi,
                                 double wx, double wy) {
     const sph_plate *pl = &w->plates[w->kind[j]];
     if (pl->axis < 0) return 0.0;
-    return -w->m[i] * cw * (pl->axis == 0 ? (ui - wx) * w->gsx[j] : (vi - wy) * w->gsy[j]);
+    return -w->m[i] * (pl->axis == 0 ? cu * (ui - wx) * w->gsx[j] : cv * (vi - wy) * w->gsy[j]);
 }
 
 
 /* physics passes (viscous.c, pressure.c) */
-void sph_viscous_rheology(sph_world *w);
+void sph_viscous_rheology(sph_world *w, double dt);
 /* The stress magnitude |tau| = eta gammadot of fluid particle i, and whether it has
  * yielded, |tau| > tau0: the one definition behind w:field, the statistics and the files. */
 static inline double sph_particle_stress(const sph_world *w, int i) { return w->eta[i] * w->gd[i]; }

@@ -2,7 +2,7 @@
  * cell with a stable counting sort (memory locality; every per-particle array is permuted
  * together), and compressed neighbour lists built once per step for the rows of the
  * pressure system (fluid particles and the wall particles near fluid). Each pair stores
- * grad_i W_ij and r_ij . grad_i W_ij / (r^2 + eps^2), reused by every pass of the step. */
+ * grad_i W_ij and r_ij . grad_i W_ij / r^2, reused by every pass of the step. */
 #include "internal.h"
 #include "kernel.h"
 
@@ -75,6 +75,7 @@ static void permute(sph_world *w, const int *perm) {
 #define GUESS(g) ((g).n == n ? (g).d : 0), ((g).n == n ? (g).d1 : 0)
     double *darr[] = {w->x,        w->y,        w->u,        w->v,        w->ax,        w->ay,
                       w->p,        w->rho,      w->m,        w->eta,      w->gd,        w->phi,
+                      w->lamxx,    w->lamxy,
                       w->psens[0], w->psens[1], w->psens[2], w->psens[3], GUESS(w->gu), GUESS(w->gv),
                       GUESS(w->gp)};
 #undef GUESS
@@ -233,7 +234,7 @@ static SPH_CLONES int count_row(const sph_world *w, int i, double r2max) {
 /* Row i's list (see sph_neighbours_build): ki its place in the cell order; cls, kf_, kw_
  * the thread's scratch. */
 static SPH_CLONES void fill_row(sph_world *w, int i, int ki, int *cls, int *kf_, int *kw_, double r2max, double kc,
-                                double kv, double hinv, double eps2) {
+                                double kv, double hinv) {
     const double *cx = w->cx, *cy = w->cy, *vol = w->vol;
     const unsigned char *cfl = w->cellfl;
     const int *items = w->cell_items;
@@ -278,14 +279,14 @@ static SPH_CLONES void fill_row(sph_world *w, int i, int ki, int *cls, int *kf_,
         double dx = xi - cx[k], dy = yi - cy[k], r2 = dx * dx + dy * dy;
         double r = sqrt(r2), sq = r * hinv;
         double dw = kc * sph_kernel_dshape(sq);
-        /* one division for g = dW/dr / r and F = r dW/dr / (r^2 + eps^2) */
-        double re = r2 + eps2, inv = 1.0 / (r > 0.0 ? r * re : 1.0);
-        double g = r > 0.0 ? dw * re * inv : 0.0;
+        /* g = dW/dr / r, also F = r dW/dr / r^2 (finite at r = 0: dW/dr ~ r there; an own
+         * image on a mirror plane sits at r = 0 and gets 0) */
+        double g = r > 0.0 ? dw / r : 0.0;
         int j = items[k];
         nj[q] = j;
         ngx[q] = g * dx;
         ngy[q] = g * dy;
-        nf_[q] = dw * r2 * inv;
+        nf_[q] = g;
         nw_[q] = kv * sph_kernel_shape(sq);
         double v = vol[j];
         divr -= v * r * dw;
@@ -326,7 +327,7 @@ int sph_neighbours_build(sph_world *w) {
     mark_rows(w);
     if (reserve_candidates(w)) return -1;
     int n = w->n, nt = n + w->ng, threads = w->threads;
-    double h = w->h, r2max = SPH_KERNEL_SUPPORT * SPH_KERNEL_SUPPORT * h * h, eps2 = w->eps2;
+    double h = w->h, r2max = SPH_KERNEL_SUPPORT * SPH_KERNEL_SUPPORT * h * h;
     int *cnt = w->nb_count;
     const int *items = w->cell_items;
     double *cx = w->cx, *cy = w->cy, *vol = w->vol;
@@ -387,7 +388,7 @@ int sph_neighbours_build(sph_world *w) {
                 w->nb_mid[i] = w->nb_start[i];
                 continue;
             }
-            fill_row(w, i, kof[i], cls, kf_, kw_, r2max, kc, kv, hinv, eps2);
+            fill_row(w, i, kof[i], cls, kf_, kw_, r2max, kc, kv, hinv);
         }
     }
     w->nb_n = n;

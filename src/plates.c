@@ -136,8 +136,22 @@ void sph_plate_rigid_velocity(const sph_world *w, int b, double *vx, double *vy)
     else if (pl->axis == 1) *vy = pl->vel * w->gsy[b];
 }
 
+/* The axis of the normal of the face of wall particle b's plate nearest to fluid particle a:
+ * the axis along which a lies farther out of the rectangle, or, for a particle that has
+ * come into it, the face it is least deep behind. A periodic axis has no face (a plate
+ * sliding across it has moved its rectangle's ends, not made faces there). */
+static int face_axis(const sph_world *w, int a, int b) {
+    if (w->par.periodic[0]) return 1;
+    if (w->par.periodic[1]) return 0;
+    const double *R = w->plates[w->kind[b]].rect;
+    double xa = w->x[a], ya = w->y[a];
+    double ox = fmax(fmax(R[0] - xa, xa - R[2]), 0.0), oy = fmax(fmax(R[1] - ya, ya - R[3]), 0.0);
+    if (ox > 0.0 || oy > 0.0) return oy >= ox;
+    return fmin(ya - R[1], R[3] - ya) <= fmin(xa - R[0], R[2] - xa);
+}
+
 /* The distances of fluid particle a and wall particle b from b's plate face nearest to a. */
-static void wall_distances(const sph_world *w, int a, int b, double *da_out, double *db_out) {
+static int wall_distances(const sph_world *w, int a, int b, double *da_out, double *db_out) {
     const sph_plate *pl = &w->plates[w->kind[b]];
     const double *R = pl->rect;
     double xa = w->x[a], ya = w->y[a], xb = w->x[b], yb = w->y[b];
@@ -147,7 +161,8 @@ static void wall_distances(const sph_world *w, int a, int b, double *da_out, dou
     double ox = fmax(fmax(R[0] - xa, xa - R[2]), 0.0);
     double oy = fmax(fmax(R[1] - ya, ya - R[3]), 0.0);
     double da, db;
-    if (oy >= ox) {
+    int axis = oy >= ox;
+    if (axis) {
         double face = ya > 0.5 * (R[1] + R[3]) ? R[3] : R[1];
         da = fabs(ya - face);
         db = fabs(yb - face);
@@ -158,11 +173,13 @@ static void wall_distances(const sph_world *w, int a, int b, double *da_out, dou
     }
     *da_out = da;
     *db_out = db;
+    return axis;
 }
 
-double sph_plate_noslip(const sph_world *w, int a, int b) {
+double sph_plate_noslip(const sph_world *w, int a, int b, int *normal) {
     double da, db, floor_a = 0.5 * w->dx;
     wall_distances(w, a, b, &da, &db);
+    *normal = face_axis(w, a, b);
     return 1.0 + db / (da > floor_a ? da : floor_a);
 }
 

@@ -30,6 +30,10 @@ typedef struct sph_material {
 
 /* Apparent viscosity and its value at gammadot = 0 (finite: tau0 * m). */
 double sph_rheology_eta(const sph_material *mat, double gammadot);
+/* The law's stress magnitude tau(g) = eta(g) g (and d tau / d g into slope, if given), and
+ * the shear rate g with tau(g) + r g = q (the augmented-Lagrangian step, viscous.c). */
+double sph_rheology_stress(const sph_material *mat, double gammadot, double *slope);
+double sph_rheology_prox(const sph_material *mat, double q, double r, double hint);
 /* A message naming the bad field, or NULL when the material is valid. */
 const char *sph_rheology_check(const sph_material *mat);
 

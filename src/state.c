@@ -18,12 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define STATE_MAGIC "SPHSTAT9" /* 2: the density fallback's wait, 3: the later passes' wait, 4: the
-                                  * last later pass stalled, 5: the last first pass's form (density.c),
-                                  * 6: the solves' first guesses and multigrid hierarchies, 7: the
-                                  * numerical options and the later passes' wait gone, 8: h, cfl and
-                                  * visc_tol gone from sph_params, 9: h and cfl back (the
-                                  * stable Lua surface of DESIGN.md) */
+#define STATE_MAGIC "SPHSTAT:" /* the format's version: a file of another is refused */
 
 typedef struct {
     char magic[8];
@@ -41,7 +36,7 @@ static void header(state_header *h) {
 }
 
 /* the per-particle doubles and ints that carry over from one step to the next */
-#define STATE_DOUBLES(w) {w->x, w->y, w->u, w->v, w->ax, w->ay, w->p, w->rho, w->m, w->phi, w->eta, w->gd}
+#define STATE_DOUBLES(w) {w->x, w->y, w->u, w->v, w->ax, w->ay, w->p, w->rho, w->m, w->phi, w->eta, w->gd, w->lamxx, w->lamxy}
 #define STATE_INTS(w) {w->kind, w->mat, w->id}
 
 /* The solves' state between steps (since SPHSTAT6): whether the plates' faces are set
@@ -177,7 +172,8 @@ static int check_plate(reader *r, int k, const sph_plate *pl) {
 /* The particles as read: kinds and materials index arrays, the doubles enter every sum
  * (make_grid's min / max scan skips a NaN, so it must not get that far). */
 static int check_particles(reader *r, sph_world *w) {
-    static const char *const dn[] = {"x", "y", "u", "v", "ax", "ay", "p", "rho", "m", "phi", "eta", "gammadot"};
+    static const char *const dn[] = {"x",   "y",   "u",   "v",        "ax",   "ay",   "p",
+                                     "rho", "m",   "phi", "eta", "gammadot", "stress xx", "stress xy"};
     double *d[] = STATE_DOUBLES(w);
     int fluid = 0;
     for (int i = 0; i < w->n && !r->bad; i++) {

@@ -1,6 +1,6 @@
 /* Adaptive time step (PHYSICS.md):
  *   dt = min(C_u h / max|u|, C_eta rho h^2 / max eta (explicit viscosity only),
- *            C_f sqrt(h / max|a|), C_s h^2 / max nu on a traction-free surface, dt_max),
+ *            C_f sqrt(h / max|a|), C_s h^2 / max nu on a traction-free surface (time accuracy), dt_max),
  * and at most 25 % more than the last step; then the density-error control below.
  * Plate speeds and accelerations count, so a plate driven into a fluid at rest sets the
  * first step. */
@@ -27,7 +27,7 @@ double sph_timestep_compute(sph_world *w) {
         double a = w->ax[i] * w->ax[i] + w->ay[i] * w->ay[i];
         if (s > umax) umax = s;
         if (a > amax) amax = a;
-        if (w->eta[i] > etamax) etamax = w->eta[i];
+        if (w->visc[i] > etamax) etamax = w->visc[i];
         if (w->rho[i] < rhomin) rhomin = w->rho[i];
         if (w->surf[i] && sph_surface_traction(w)) {
             double nu = w->mats[w->mat[i]].mu / w->rho[i];
@@ -52,9 +52,8 @@ double sph_timestep_compute(sph_world *w) {
     if (amax > 0) dt = fmin(dt, C_FORCE * sqrt(h / amax));
     if (P->viscosity == SPH_VISC_EXPLICIT && etamax > 0 && isfinite(rhomin))
         dt = fmin(dt, C_VISC * rhomin * h * h / etamax);
-    /* The free surface's stress is explicit (its pressure is the viscous solution's
-     * n . tau . n): a particle-scale mode of the surface row grows beyond dt ~ 3 rho h^2 /
-     * eta (SPH_SURFACE_CS, internal.h). */
+    /* time accuracy: the split step's error grows with mu dt / (rho h^2), largest along a
+     * free surface (SPH_SURFACE_CS, internal.h) */
     if (nus > 0) dt = fmin(dt, SPH_SURFACE_CS * h * h / nus);
     if (P->dt_max > 0) dt = fmin(dt, P->dt_max);
     /* The density error each step leaves (mostly near a free surface, where the

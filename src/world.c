@@ -101,7 +101,6 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
      * suite and of docs/validation.md was measured with (docs/method.md, "Kernel and
      * neighbours"). */
     w->h = p->h > 0 ? p->h : p->dx;
-    w->eps2 = 0.01 * w->h * w->h;
     w->mass0 = p->rho0 * p->dx * p->dx;
     w->threads = p->threads > 0 ? p->threads : omp_get_num_procs();
     if (w->threads > SPH_MAX_THREADS) w->threads = SPH_MAX_THREADS; /* a machine of more cores */
@@ -114,7 +113,7 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
  * sph_world_reserve, freed together. */
 #define PARTICLE_DOUBLES(w)                                                                 \
     {&w->x,   &w->y,   &w->u,   &w->v,   &w->us,  &w->vs,  &w->ax,       &w->ay,       \
-     &w->p,   &w->rho, &w->m,   &w->eta, &w->gd,  &w->divr, &w->xs, &w->ys, &w->lxx,       \
+     &w->p,   &w->rho, &w->m,   &w->eta, &w->gd,  &w->divr, &w->visc, &w->lamxx, &w->lamxy, &w->sxx, &w->sxy, &w->xs, &w->ys, &w->lxx,       \
      &w->lxy, &w->lyy, &w->gux, &w->guy, &w->gvx, &w->gvy, &w->phi, &w->ps, &w->psens[0], &w->psens[1], \
      &w->psens[2], &w->psens[3], &w->dp, &w->vol, &w->sa, &w->sb, &w->cx, &w->cy, &w->ru, &w->rv, \
      &w->gu.d, &w->gu.d1, &w->gv.d, &w->gv.d1, &w->gp.d, &w->gp.d1}
@@ -280,7 +279,8 @@ int sph_world_fill(sph_world *w, const double rect[4], const sph_material *mat) 
             w->mat[q] = mi;
             w->m[q] = w->mass0;
             w->rho[q] = P->rho0;
-            w->eta[q] = sph_rheology_eta(mat, 0.0);
+            w->eta[q] = w->visc[q] = sph_rheology_eta(mat, 0.0);
+            w->lamxx[q] = w->lamxy[q] = 0.0;
             w->id[q] = w->next_id++;
         }
     w->nfluid += count;
@@ -379,7 +379,7 @@ int sph_world_step(sph_world *w, double dt) {
     if (dt > 0) {
         double etamax = 0.0;
         for (int i = 0; i < w->n; i++)
-            if (w->kind[i] == SPH_FLUID && w->eta[i] > etamax) etamax = w->eta[i];
+            if (w->kind[i] == SPH_FLUID && w->visc[i] > etamax) etamax = w->visc[i];
         double bound = SPH_DT_SPAN * w->par.rho0 * w->h * w->h / etamax;
         if (etamax > 0 && dt > bound)
             return sph_world_fail(w,
@@ -411,7 +411,7 @@ int sph_world_step(sph_world *w, double dt) {
     sph_surface_mark(w);
     for (int k = 0; k < w->nplates; k++) memcpy(w->plates[k].rect0, w->plates[k].rect, sizeof w->plates[k].rect);
     sph_lap(w, SPH_PHASE_NEIGHBOURS);
-    sph_viscous_rheology(w);
+    sph_viscous_rheology(w, dt);
     sph_lap(w, SPH_PHASE_RHEOLOGY);
     /* the solver's clocks, split between the viscous and the pressure solves */
     double su0 = w->solver.setup_time, so0 = w->solver.solve_time;

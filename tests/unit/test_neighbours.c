@@ -144,7 +144,7 @@ static void check_momentum(void) {
         w->rho[i] = 1.0 + 0.01 * (rnd(&s) - 0.5);
     }
     build_neighbours(w);
-    sph_viscous_rheology(w);
+    sph_viscous_rheology(w, 1e-3);
     double px0 = 0, py0 = 0, px1 = 0, py1 = 0, pref = 0;
     for (int i = 0; i < w->n; i++) {
         px0 += w->m[i] * w->u[i];

@@ -103,10 +103,10 @@ static double viscous_error(int nx) {
         double x = w->x[i], y = w->y[i];
         w->u[i] = sin(2 * PI * x) * cos(2 * PI * y);
         w->v[i] = -cos(2 * PI * x) * sin(2 * PI * y);
-        w->eta[i] = eta_of(x, y);
+        w->visc[i] = eta_of(x, y);
     }
     sph_boundary_sync(w, w->u, w->v, 1);
-    sph_boundary_sync(w, w->eta, 0, 0);
+    sph_boundary_sync(w, w->visc, 0, 0);
     sph_viscous_explicit(w, 1.0);
     double err = 0.0, scale = 0.0, rho = w->par.rho0;
     for (int i = 0; i < w->n; i++) {
