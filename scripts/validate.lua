@@ -2,8 +2,9 @@
 -- each case at up to three resolutions, with the error against the reference and the
 -- observed order between successive resolutions. Writes docs/validation.md (whole) and one
 -- error-against-dx plot per section (docs/validation_*.png).
---   1. the square at t = 0+ (creeping flow, V = -1, Re = 0.05): the plate force over the
---      finite-element (FE) force at the current gap, and the unyielded area fraction;
+--   1. the square at t = 0+ (creeping flow, V = -1, Re = 0.05): the plate force extrapolated
+--      to t = 0 over the finite-element (FE) force (Bn = 0, 10; at Bn = 1000 the window mean
+--      over the FE force at the current gap), and the unyielded area fraction;
 --   2. thin films (Newtonian, V = -1, Re = 0.05): rectangles at a/h = 2, 5, 10, the plate
 --      force against the FE / lubrication force at the current gap and aspect ratio;
 --   3. yield: a Bingham square (Bn = 10, M = 800, Re = 1) under 0.75 and 1.5 times its
@@ -88,8 +89,8 @@ local timing = {} -- { section, seconds }
 -- unyielded area fraction at h = 1 (FE, not mesh-converged at Bn = 10: 0.11-0.13).
 local refs = require "sph.references"
 local REF = {
-  { Bn = 0, unyielded = 0 },
-  { Bn = 10, unyielded = 0.12 },
+  { Bn = 0, unyielded = 0, at0 = true },
+  { Bn = 10, unyielded = 0.12, at0 = true },
   { Bn = 1000, unyielded = 0.50 },
 }
 
@@ -104,12 +105,13 @@ local function section1()
     local xs, es = {}, {}
     for _, n in ipairs(ns) do
       local r = attempt(square, c, n)
-      local row = { Bn = c.Bn, n = n, ok = r.ok, r = r, ref_un = c.unyielded }
+      local row = { Bn = c.Bn, n = n, ok = r.ok, r = r, ref_un = c.unyielded, at0 = c.at0 }
       if r.ok then
-        row.err = math.abs(r.ratio - 1)
+        row.val = c.at0 and r.ratio0 or r.ratio
+        row.err = math.abs(row.val - 1)
         xs[#xs + 1], es[#es + 1] = 1 / n, row.err
-        say("square Bn = %g, dx = 1/%d: F / F_FE = %.4f (error %.4f), unyielded %.3f (FE %.2f), %d steps, %.1f s",
-          c.Bn, n, r.ratio, row.err, r.unyielded, c.unyielded, r.steps, r.cpu)
+        say("square Bn = %g, dx = 1/%d: F / F_FE = %.4f (%s; error %.4f; window mean at the gap %.4f), unyielded %.3f (FE %.2f), %d steps, %.1f s",
+          c.Bn, n, row.val, c.at0 and "t = 0+" or "window mean", row.err, r.ratio, r.unyielded, c.unyielded, r.steps, r.cpu)
       else
         say("square Bn = %g, dx = 1/%d: failed: %s", c.Bn, n, r.msg)
       end
@@ -124,14 +126,19 @@ local function section1()
   end
   w_md("## The square at t = 0+ (section 1)\n\n",
     "Half square 2a = H = 1, symmetry plane x = 0, V = -1, Re = 0.05, M = 800, default options; ",
-    "F / F_FE is the mean over t in (0.005, 0.02) of the plate force over the FE force at the current gap.\n\n",
-    "| Bn | dx | F / F_FE | error | observed order | unyielded fraction (FE) | steps | s |\n|---|---|---|---|---|---|---|---|\n")
+    "F(0+) / F_FE: the plate force's least-squares line over t in (0.01, 0.02) at t = 0, over the square's FE force ",
+    "(Bn = 0, 10; the error and the order are of this). Window mean: the mean over t in (0.005, 0.02) of the force ",
+    "over the FE rectangle at the current gap, which the barrelling sample's pinned contact width biases by about ",
+    "-1.4 %; at Bn = 1000 the force builds up over the first 0.005 and falls nonlinearly, so the error is the window ",
+    "mean's.\n\n",
+    "| Bn | dx | F(0+) / F_FE | window mean | error | observed order | unyielded fraction (FE) | steps | s |\n|---|---|---|---|---|---|---|---|---|\n")
   for _, r in ipairs(rows) do
     if r.ok then
-      w_md(("| %g | 1/%d | %.4f | %.4f | %s | %.3f (%.2f) | %d | %.1f |\n"):format(r.Bn, r.n, r.r.ratio, r.err,
+      w_md(("| %g | 1/%d | %s | %.4f | %.4f | %s | %.3f (%.2f) | %d | %.1f |\n"):format(r.Bn, r.n,
+        r.at0 and ("%.4f"):format(r.r.ratio0) or "", r.r.ratio, r.err,
         r.orders or "", r.r.unyielded, r.ref_un, r.r.steps, r.r.cpu))
     else
-      w_md(("| %g | 1/%d | failed: %s | | | | %d | %.1f |\n"):format(r.Bn, r.n, r.r.msg, r.r.steps, r.r.cpu))
+      w_md(("| %g | 1/%d | failed: %s | | | | | %d | %.1f |\n"):format(r.Bn, r.n, r.r.msg, r.r.steps, r.r.cpu))
     end
   end
   w_md("\n![error against dx](validation_square.png)\n\n")

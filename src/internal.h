@@ -63,6 +63,7 @@ struct sph_world {
     double *eta, *gd, *divr;   /* apparent viscosity, shear rate, position div      */
     double *visc;              /* the viscous operator's viscosity (viscous.c)       */
     double *lamxx, *lamxy;     /* stress multiplier (deviatoric: lam_yy = -lam_xx)   */
+    double *tau;               /* the stress magnitude of the yield state (viscous.c)  */
     double *sxx, *sxy;         /* this step's explicit stress lam - 2 visc gamma     */
     double *lxx, *lxy, *lyy;   /* kernel-gradient renormalisation (Bonet & Lok 1999) */
     double *gux, *guy, *gvx, *gvy; /* velocity gradient (du/dx, du/dy, dv/dx, dv/dy)  */
@@ -207,9 +208,9 @@ static inline double sph_plate_pull(const sph_world *w, int i, int j, double cu,
 
 /* physics passes (viscous.c, pressure.c) */
 void sph_viscous_rheology(sph_world *w, double dt);
-/* The stress magnitude |tau| = eta gammadot of fluid particle i, and whether it has
- * yielded, |tau| > tau0: the one definition behind w:field, the statistics and the files. */
-static inline double sph_particle_stress(const sph_world *w, int i) { return w->eta[i] * w->gd[i]; }
+/* The stress magnitude |tau| of fluid particle i (viscous.c, yield_stress), and whether it
+ * has yielded, |tau| > tau0: the one definition behind w:field, the statistics and the files. */
+static inline double sph_particle_stress(const sph_world *w, int i) { return w->tau[i]; }
 static inline int sph_particle_yielded(const sph_world *w, int i) {
     return sph_particle_stress(w, i) > w->mats[w->mat[i]].tau0;
 }

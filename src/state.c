@@ -36,7 +36,7 @@ static void header(state_header *h) {
 }
 
 /* the per-particle doubles and ints that carry over from one step to the next */
-#define STATE_DOUBLES(w) {w->x, w->y, w->u, w->v, w->ax, w->ay, w->p, w->rho, w->m, w->phi, w->eta, w->gd, w->lamxx, w->lamxy}
+#define STATE_DOUBLES(w) {w->x, w->y, w->u, w->v, w->ax, w->ay, w->p, w->rho, w->m, w->phi, w->eta, w->gd, w->lamxx, w->lamxy, w->tau}
 #define STATE_INTS(w) {w->kind, w->mat, w->id}
 
 /* The solves' state between steps (since SPHSTAT6): whether the plates' faces are set

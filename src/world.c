@@ -113,7 +113,7 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
  * sph_world_reserve, freed together. */
 #define PARTICLE_DOUBLES(w)                                                                 \
     {&w->x,   &w->y,   &w->u,   &w->v,   &w->us,  &w->vs,  &w->ax,       &w->ay,       \
-     &w->p,   &w->rho, &w->m,   &w->eta, &w->gd,  &w->divr, &w->visc, &w->lamxx, &w->lamxy, &w->sxx, &w->sxy, &w->xs, &w->ys, &w->lxx,       \
+     &w->p,   &w->rho, &w->m,   &w->eta, &w->gd,  &w->divr, &w->visc, &w->lamxx, &w->lamxy, &w->tau, &w->sxx, &w->sxy, &w->xs, &w->ys, &w->lxx,       \
      &w->lxy, &w->lyy, &w->gux, &w->guy, &w->gvx, &w->gvy, &w->phi, &w->ps, &w->psens[0], &w->psens[1], \
      &w->psens[2], &w->psens[3], &w->dp, &w->vol, &w->sa, &w->sb, &w->cx, &w->cy, &w->ru, &w->rv, \
      &w->gu.d, &w->gu.d1, &w->gv.d, &w->gv.d1, &w->gp.d, &w->gp.d1}
@@ -280,7 +280,7 @@ int sph_world_fill(sph_world *w, const double rect[4], const sph_material *mat) 
             w->m[q] = w->mass0;
             w->rho[q] = P->rho0;
             w->eta[q] = w->visc[q] = sph_rheology_eta(mat, 0.0);
-            w->lamxx[q] = w->lamxy[q] = 0.0;
+            w->lamxx[q] = w->lamxy[q] = w->tau[q] = 0.0;
             w->id[q] = w->next_id++;
         }
     w->nfluid += count;

@@ -163,10 +163,10 @@ T.case("sph.load checks what it reads", function()
   -- (2 doubles, 2 ints, 2 doubles a particle), the reuse count, two hierarchy tags and
   -- two hierarchies (none before a step: 6 ints and a long each)
   local solver_len = 4 + 3 * (24 + 16 * n) + 8 + 8 + 2 * 32
-  local parts_at = #base - solver_len - n * (18 * 8 + 3 * 4 + 1) + 1 -- 14 doubles, 4 sensitivities, 3 ints, a flag per particle
+  local parts_at = #base - solver_len - n * (19 * 8 + 3 * 4 + 1) + 1 -- 15 doubles, 4 sensitivities, 3 ints, a flag per particle
   local solver_at = #base - solver_len + 1
   local guess_at = solver_at + 4
-  local kind_at, mat_at = parts_at + 18 * 8 * n, parts_at + 18 * 8 * n + 4 * n
+  local kind_at, mat_at = parts_at + 19 * 8 * n, parts_at + 19 * 8 * n + 4 * n
   local mats_at, plates_at = nmats_at + 4, nplates_at + 4
   local function check(at, bytes, msg, name, data)
     data = data or base
@@ -236,7 +236,7 @@ T.case("sph.load checks what it reads", function()
   ws:plate{ rect = { -1, 1, 2, 1.3 }, axis = "y" }:velocity(-1)
   for _ = 1, 3 do ws:step() end
   local sb = saved(ws)
-  local h1 = parts_at + ws:stats().particles * (18 * 8 + 3 * 4 + 1) + 4 + 3 * (24 + 16 * ws:stats().particles) + 16
+  local h1 = parts_at + ws:stats().particles * (19 * 8 + 3 * 4 + 1) + 4 + 3 * (24 + 16 * ws:stats().particles) + 16
   local lev1 = string.unpack("<i4", sb, h1)
   T.check(lev1 >= 2, "a stepped world saves a multigrid hierarchy", lev1)
   local sizes_at = h1 + 32
