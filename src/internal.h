@@ -235,6 +235,8 @@ void sph_viscous_explicit(sph_world *w, double dt);
 int sph_viscous_implicit(sph_world *w, double dt);
 int sph_pressure_solve(sph_world *w, double dt);
 void sph_pressure_correct(sph_world *w, double dt);
+/* world.c: sph_world_step, with whether dt is the caller's (held to the viscous-time span) */
+int sph_world_step_given(sph_world *w, double dt, int given);
 void sph_pressure_predictor(sph_world *w, double *ax, double *ay);
 int sph_density_correct(sph_world *w);
 /* The pressure system's pieces the density correction (density.c) shares (pressure.c) */

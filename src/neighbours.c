@@ -75,7 +75,7 @@ static void permute(sph_world *w, const int *perm) {
 #define GUESS(g) ((g).n == n ? (g).d : 0), ((g).n == n ? (g).d1 : 0)
     double *darr[] = {w->x,        w->y,        w->u,        w->v,        w->ax,        w->ay,
                       w->p,        w->rho,      w->m,        w->eta,      w->gd,        w->phi,
-                      w->lamxx,    w->lamxy,    w->tau,
+                      w->lamxx,    w->lamxy,    w->tau,      w->visc,
                       w->psens[0], w->psens[1], w->psens[2], w->psens[3], GUESS(w->gu), GUESS(w->gv),
                       GUESS(w->gp)};
 #undef GUESS

@@ -24,7 +24,7 @@ int sph_world_run_until(sph_world *w, double t_end, double dt, sph_step_hook bef
         int last = step >= r - eps;
         if (last) step = r;
         else if (r < SPREAD_MAX_STEPS * step) step = r / ceil(r / step);
-        if (sph_world_step(w, step) < 0) return -1;
+        if (sph_world_step_given(w, step, dt > 0) < 0) return -1;
         if (last) w->t = t_end; /* t + (t_end - t) may miss t_end by an ulp */
     }
     return 0;

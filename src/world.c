@@ -360,7 +360,13 @@ void sph_lap(sph_world *w, int phase) {
  * of the fluid: beyond it no flow is resolved (and w:step(1e300) would take t to 2e300). */
 #define SPH_DT_SPAN 1e6
 
-int sph_world_step(sph_world *w, double dt) {
+int sph_world_step(sph_world *w, double dt) { return sph_world_step_given(w, dt, dt > 0); }
+
+/* given: dt is the caller's, so it is held to SPH_DT_SPAN; a run's adaptive steps
+ * (run.c), spread to land on an output time, are the engine's own and are not: at rest a
+ * regularised Bingham law's viscosity tau0 m (8e5 at Bn = 1000, M = 800) makes the viscous
+ * time far shorter than any step the flow needs. */
+int sph_world_step_given(sph_world *w, double dt, int given) {
     double t0 = omp_get_wtime();
     w->lap = t0;
     prepare(w);
@@ -376,7 +382,7 @@ int sph_world_step(sph_world *w, double dt) {
     if (!isfinite(dt))
         return sph_world_fail(w, "dt must be a finite positive number (or <= 0: adaptive), got %g at step %ld (t = %g)",
                               dt, w->steps, w->t);
-    if (dt > 0) {
+    if (dt > 0 && given) {
         double etamax = 0.0;
         for (int i = 0; i < w->n; i++)
             if (w->kind[i] == SPH_FLUID && w->visc[i] > etamax) etamax = w->visc[i];

@@ -71,7 +71,8 @@ end
 --     builds up over the first 0.005 and falls nonlinearly: use ratio.
 -- opts as M.square_world's (on_world: a caller that catches an engine error still has the
 -- world; dt_max none: the engine's step). Returns { ratio, spread, ratio0, steps, cpu,
--- unyielded (the share of unyielded particles at the end), particles }.
+-- unyielded (the share of unyielded particles at the end), at_plates (the share of those
+-- within 0.25 of a plate and at x < 0.45, where FE's wedges are at Bn = 10), particles }.
 function M.square_t0(n, Bn, opts)
   opts = opts or {}
   local w, top = M.square_world(n, Bn, opts)
@@ -91,11 +92,18 @@ function M.square_t0(n, Bn, opts)
     end
   end
   local slope = (L.n * L.tf - L.t * L.f) / (L.n * L.tt - L.t * L.t)
-  local y, un = w:field("yielded"), 0
-  for i = 1, #y do if y[i] < 0.5 then un = un + 1 end end
+  local yl, px, py, un, near = w:field("yielded"), w:field("x"), w:field("y"), 0, 0
+  local h = top.position
+  for i = 1, #yl do
+    if yl[i] < 0.5 then
+      un = un + 1
+      if px[i] < 0.45 and (py[i] < 0.25 or py[i] > h - 0.25) then near = near + 1 end
+    end
+  end
   local mean = s / m
   return { ratio = mean, spread = math.sqrt(math.max(0, s2 / m - mean * mean)), ratio0 = (L.f - slope * L.t) / L.n,
-           steps = w.steps, cpu = w:stats().wall_time, unyielded = un / #y, particles = #y }
+           steps = w.steps, cpu = w:stats().wall_time, unyielded = un / #yl, particles = #yl,
+           at_plates = un > 0 and near / un or 0 }
 end
 
 -- Thin-film Bingham squeeze of a sample of area A (default 1) at closing speed V: at

@@ -299,6 +299,20 @@ T.case("step: a world a failed step left non-finite is not stepped on", function
   T.checkerror("left by a failed step: load a saved state", "and says what to do", w.run, w, { until_t = 1, progress = false })
 end)
 
+T.case("run: the engine's own steps are not held to the bound of a given dt", function()
+  -- a Bingham square at Bn = 1000, M = 800: at rest its viscosity tau0 m = 8e5 makes the
+  -- bound 1e6 rho h^2 / max eta = 3.9e-5, below the first adaptive step (3.1e-4), which
+  -- w:run passes on to land on until_t (it stopped there at step 0)
+  local w = sph.world{ dx = 1 / 40, rho = 0.05, symmetry = { x = 0 }, threads = 1 }
+  w:fill{ rect = { 0, 0, 0.5, 1 }, material = sph.bingham{ mu = 1, tau0 = 1000, m = 800 } }
+  w:plate{ rect = { -3, -0.125, 3, 0 } }
+  local top = w:plate{ rect = { -3, 1, 3, 1.125 }, axis = "y" }
+  top:velocity(-1)
+  local ok, err = pcall(w.run, w, { until_t = 0.001, progress = false })
+  T.check(ok and math.abs(w.t - 0.001) < 1e-12, "w:run{until_t = 0.001} of a Bn = 1000 square runs", tostring(err))
+  T.checkerror("exceeds the bound", "while a dt given beyond the bound is refused", w.step, w, 1e300)
+end)
+
 T.case("step: the dt given must be finite and within bounds", function()
   local w = sph.world{ dx = 0.1, threads = 1 }
   w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
