@@ -6,7 +6,7 @@
 --   build/sph scripts/figures.lua [dx=0.025] [M=800] [t_end=2] [threads=2] [out=docs]
 -- Other parameters: times (comma-separated still times, default 0,0.1,0.5,2; those after
 -- t_end are dropped and t_end is added), nanim (animation frames, default 21), width and
--- awidth (still and animation widths in pixels), every (h(t) sampling). About a minute at
+-- awidth (still and animation widths in pixels), every (h(t) sampling). About three minutes at
 -- the defaults on a 2-core machine.
 local sph = require "sph"
 local squeeze = require "sph.squeeze"
