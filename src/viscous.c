@@ -121,15 +121,22 @@ static void surface_rate(const sph_world *w, int i, double *exx, double *exy) {
     }
 }
 
+/* The unit normal of free-surface particle i (sph_boundary_moment normalised); 0 where the
+ * moment vanishes. */
+static int surface_normal(const sph_world *w, int i, double *nx, double *ny) {
+    sph_boundary_moment(w, i, nx, ny);
+    double nn = hypot(*nx, *ny);
+    if (!(nn > 0.0)) return 0;
+    *nx /= nn;
+    *ny /= nn;
+    return 1;
+}
+
 /* The traction-free surface has no shear stress: lam and S at a free-surface particle keep
  * their normal part, A_nn (n n - t t). */
 static void surface_normal_part(const sph_world *w, int i, double *axx, double *axy) {
     double nx, ny;
-    sph_boundary_moment(w, i, &nx, &ny);
-    double nn = hypot(nx, ny);
-    if (!(nn > 0.0)) return;
-    nx /= nn;
-    ny /= nn;
+    if (!surface_normal(w, i, &nx, &ny)) return;
     double c2 = nx * nx - ny * ny, s2 = 2.0 * nx * ny, ann = *axx * c2 + *axy * s2;
     *axx = ann * c2;
     *axy = ann * s2;
@@ -228,13 +235,8 @@ static void surface_pressure(sph_world *w, const double *u, const double *v, dou
         velocity_gradient(w, i, u, v, g);
         double e = surface_stretching(w, i, g);
         double eta = w->visc[i], target = -2.0 * eta * e, nx, ny;
-        sph_boundary_moment(w, i, &nx, &ny);
-        double nn = hypot(nx, ny);
-        if (nn > 0.0) { /* n . S . n (S deviatoric) */
-            nx /= nn;
-            ny /= nn;
+        if (surface_normal(w, i, &nx, &ny)) /* n . S . n (S deviatoric) */
             target += w->sxx[i] * (nx * nx - ny * ny) + 2.0 * w->sxy[i] * nx * ny;
-        }
         /* relaxed towards the target where dt exceeds the surface's viscous time */
         double al = fmax(SPH_SURFACE_CS * w->rho[i] * w->h * w->h / (eta * dt), w->mats[w->mat[i]].mu / eta);
         w->ps[i] = al < 1.0 ? w->p[i] + al * (target - w->p[i]) : target;
@@ -255,6 +257,13 @@ static void surface_pressure(sph_world *w, const double *u, const double *v, dou
  * pressure gradient, whose push it balances), with the same apparent viscosity. Walls carry
  * T_i (the gradient continued into the plate): no boundary term there. Images: T_ab times
  * s_a s_b. */
+/* fp[plate of wall j] -= the share along its axis of the force (wx, wy) / rho_i that fluid
+ * particle i's acceleration takes from wall neighbour j (whole sample: image signs). */
+static inline void plate_reaction(const sph_world *w, int i, int j, double wx, double wy, double *fp) {
+    const sph_plate *pl = &w->plates[w->kind[j]];
+    if (fp && pl->axis >= 0) fp[w->kind[j]] -= w->m[i] / w->rho[i] * (pl->axis == 0 ? wx * w->gsx[j] : wy * w->gsy[j]);
+}
+
 static void transpose_accel(const sph_world *w, int i, double *ax, double *ay, double *fp) {
     int k0 = w->nb_start[i], km = w->nb_mid[i], k1 = w->nb_start[i + 1];
     *ax = *ay = 0.0;
@@ -280,9 +289,7 @@ static void transpose_accel(const sph_world *w, int i, double *ax, double *ay, d
         double wx = c * (txx * w->nb_gx[k] + tyx * w->nb_gy[k]), wy = c * (txy * w->nb_gx[k] + tyy * w->nb_gy[k]);
         fx += wx;
         fy += wy;
-        const sph_plate *pl = &w->plates[w->kind[j]];
-        if (fp && pl->axis >= 0)
-            fp[w->kind[j]] -= w->m[i] / w->rho[i] * (pl->axis == 0 ? wx * w->gsx[j] : wy * w->gsy[j]);
+        plate_reaction(w, i, j, wx, wy, fp);
     }
     *ax = fx / w->rho[i];
     *ay = fy / w->rho[i];
@@ -310,8 +317,7 @@ static void stress_accel(const sph_world *w, int i, double *ax, double *ay, doub
         double c = 2.0 * w->vol[j], wx = c * sxy * w->nb_gy[k], wy = c * sxy * w->nb_gx[k];
         fx += wx;
         fy += wy;
-        const sph_plate *pl = &w->plates[w->kind[j]];
-        if (fp && pl->axis >= 0) fp[w->kind[j]] -= w->m[i] * ri * (pl->axis == 0 ? wx * w->gsx[j] : wy * w->gsy[j]);
+        plate_reaction(w, i, j, wx, wy, fp);
     }
     *ax = fx * ri;
     *ay = fy * ri;
@@ -412,13 +418,14 @@ static int reserve_visc(sph_world *w, int nrows) {
  * same coefficients; they differ only by the image signs of ghosts (gsx, gsy), the wall
  * velocity and the gravity: u's values, diagonal and right-hand side go to w->V and w->vb,
  * v's to vval, vdiag and vrhs. */
-static void visc_assemble(sph_world *w, double dt) {
+static void visc_assemble(sph_world *w, double dt, double *fexp) {
     sph_csr *A = &w->V;
     int nrows = A->n;
+    double fe[SPH_MAX_PLATES] = {0};
     /* the pressure predictor (pressure.c): -grad p~ / rho as a body force */
     double gx = w->par.gravity[0], gy = w->par.gravity[1];
     sph_pressure_predictor(w, w->xs, w->ys);
-#pragma omp parallel for schedule(static) num_threads(w->threads)
+#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : fe[:SPH_MAX_PLATES])
     for (int r = 0; r < nrows; r++) {
         int i = w->vrow_of[r], e = A->start[r] + 1;
         double mi = w->m[i];
@@ -426,8 +433,8 @@ static void visc_assemble(sph_world *w, double dt) {
         ru += dt * w->xs[i];
         rv += dt * w->ys[i];
         double fx, fy, tx, ty; /* the transpose part of div tau and the stress S (explicit) */
-        transpose_accel(w, i, &fx, &fy, 0);
-        stress_accel(w, i, &tx, &ty, 0);
+        transpose_accel(w, i, &fx, &fy, fe);
+        stress_accel(w, i, &tx, &ty, fe);
         ru += dt * (fx + tx);
         rv += dt * (fy + ty);
         int k0 = w->nb_start[i], km = w->nb_mid[i], k1 = w->nb_start[i + 1];
@@ -467,6 +474,7 @@ static void visc_assemble(sph_world *w, double dt) {
         w->vrhs[r] = mi * rv;
         w->vsol[r] = w->u[i];
     }
+    for (int k = 0; k < SPH_MAX_PLATES; k++) fexp[k] = fe[k];
     sph_lap(w, SPH_PHASE_VISC_ASSEMBLY);
 }
 
@@ -540,7 +548,8 @@ int sph_viscous_implicit(sph_world *w, double dt) {
      * from both components' values each step. */
     int iters = 0;
     double resid = 0.0;
-    visc_assemble(w, dt);
+    double fplate[SPH_MAX_PLATES]; /* the plates' share of the explicit terms, then of the Morris sum */
+    visc_assemble(w, dt, fplate);
     sph_csr V2 = *A;
     V2.val = w->vval;
     V2.diag = w->vdiag;
@@ -580,7 +589,6 @@ int sph_viscous_implicit(sph_world *w, double dt) {
     /* walls keep their plate's velocity; the viscous force on each plate from u* */
     /* then the pressure predictor's term taken back: the projection applies the whole
      * -grad p^{n+1} / rho (the plates' viscous force is that of u* with it) */
-    double fplate[SPH_MAX_PLATES] = {0};
 #pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : fplate[:SPH_MAX_PLATES])
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) {
@@ -594,9 +602,6 @@ int sph_viscous_implicit(sph_world *w, double dt) {
             wall_coeff(w, i, j, k, &wx, &wy, &cu, &cv);
             fplate[w->kind[j]] += sph_plate_pull(w, i, j, cu, cv, w->us[i], w->vs[i], wx, wy);
         }
-        double tx, ty; /* the explicit terms' share: their wall parts act on the fluid too */
-        transpose_accel(w, i, &tx, &ty, fplate);
-        if (w->sxx[i] != 0.0 || w->sxy[i] != 0.0) stress_accel(w, i, &tx, &ty, fplate);
         w->us[i] -= dt * w->xs[i];
         w->vs[i] -= dt * w->ys[i];
     }
