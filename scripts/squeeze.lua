@@ -8,9 +8,8 @@
 -- default min(0.25, 0.8 height)), h_stop (end the run at an output time when the gap is
 -- thinner; default h_min), viscosity, shifting, threads, out (folder); width and
 -- height (the half sample's, default 0.5 and 1: a film started thin is width=1.6
--- height=0.2), and the engine options density_correction and pressure_gradient (the
--- thin-film options: at constant velocity pressure_gradient=difference, under a load
--- density_correction=gmres pressure_gradient=difference; README, Thin films), tol (the
+-- height=0.2), thin_film=1 (the engine's thin-film scheme, for a film of a few
+-- particle rows; README, Thin films), tol (the
 -- relative residual of the pressure and viscous solves; docs/performance.md).
 -- Writes out/series.csv: t, h, plate velocity, plate force, solver iterations, max
 -- density error, and the lubrication reference (Newtonian: mu V / h^6 or h(t) under load).
@@ -64,8 +63,7 @@ local SPEC = {
   { "threads", "integer", nil, "threads (all cores)" },
   { "viscosity", { "implicit", "explicit" }, nil, "the viscous step" },
   { "shifting", "number", nil, "particle shifting coefficient (20)" },
-  { "density_correction", { "passes", "gmres" }, nil, "engine option (docs/api.md)" },
-  { "pressure_gradient", { "symmetric", "difference" }, nil, "engine option (docs/api.md)" },
+  { "thin_film", "flag", 0, "1: the engine's thin-film scheme (docs/api.md)" },
   { "tol", "number", nil, "the pressure and viscous solves' relative residual" },
 }
 local o = params.args("squeeze", SPEC, ...) -- a bad parameter: named, exit 1
@@ -116,8 +114,7 @@ local t_end, every = o.t_end, o.every
 local out = o.out
 
 local world_opts = { threads = o.threads, viscosity = o.viscosity, shifting = o.shifting,
-                     density_correction = o.density_correction, pressure_gradient = o.pressure_gradient,
-                     tol = o.tol }
+                     thin_film = o.thin_film == 1, tol = o.tol }
 local height = o.height or 1
 local width = o.width or 0.5 * height
 -- the plates are sized for the sample spread to the gap h_min; the run ends at h_stop, by
@@ -249,9 +246,8 @@ if restart and nframes > 0 then
   end
 end
 -- a film a few particles thick is where the defaults fail (README, Thin films): say so once
-local thin_noted = o.pressure_gradient == "difference"
-local thin_options = mode == "velocity" and "pressure_gradient=difference"
-                     or "density_correction=gmres pressure_gradient=difference"
+local thin_noted = o.thin_film == 1
+local thin_options = "thin_film=1"
 -- a progress line on a terminal (stderr): the time, the gap and the time left, rewritten
 -- at each output and cleared before anything else is printed
 local progress_on = os.execute("test -t 2") == true and os.getenv("TERM") ~= "dumb"

@@ -5,7 +5,7 @@
 -- flags that match the sample's outline. Prints one table row per case and a last line
 -- `N passed, N failed`.
 --   build/sph scripts/stability.lua [quick=1] [only=name] [threads=N] [dx=0.025]
---                                   [shifting=A] [dc=passes|gmres] [pg=symmetric|difference]
+--                                   [shifting=A] [thin_film=1]
 -- quick=1 runs each case to a tenth of its end time (the reduced versions of make test).
 local stability = require "sph.stability"
 local o = ... or {}
@@ -18,7 +18,7 @@ for _, c in ipairs(stability.cases) do
   if not o.only or o.only == c.name then
     local r = stability.run(c, quick and c.t_end / 10 or c.t_end,
                             { dx = o.dx, threads = o.threads, world = { shifting = o.shifting,
-                                       density_correction = o.dc, pressure_gradient = o.pg } })
+                                       thin_film = o.thin_film == 1 or nil } })
     ran = ran + 1
     if not r.pass then failures = failures + 1 end
     print(string.format("%-20s %7.3g %8.1f %8d %8.1f %8.1f %8.4f %7.4f %7d %7d %s", c.name, r.t, r.wall, r.steps,

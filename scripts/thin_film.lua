@@ -1,9 +1,8 @@
 -- Study (not a test): the Newtonian square-sample squeeze (Re = 1, V = 1, half sample with a
 -- symmetry plane) run into a thin film, the plate force against lubrication theory
 -- (F = mu V / h^6 for the whole sample of area 1) as a function of a / h = 1 / (2 h^2),
--- with the defaults and with the thin-film options (density_correction = "gmres",
--- pressure_gradient = "difference"). Each run goes to h = h_stop or until the engine stops
--- it (the message is printed; exit status 1 then). h_stop under 3 dx is refused. Writes
+-- with the defaults and with the thin-film scheme (thin_film = true). Each run goes to
+-- h = h_stop or until the engine stops it (the message is printed; exit status 1 then). h_stop under 3 dx is refused. Writes
 -- OUT/thin_film.csv (run, h, a/h, F h^6, max density error) and OUT/thin_film.png.
 --   build/sph scripts/thin_film.lua [dx=0.025] [runs=defaults,thin] [h_stop=0.15] [out=out/bench]
 --                                   [threads=1]
@@ -17,7 +16,7 @@ if not (h_stop >= 3 * dx * (1 - 1e-9)) then -- a film a particle or two across r
   os.exit(1)
 end
 local stopped = 0 -- runs the engine stopped before h_stop (status 1 at the end)
-local OPTIONS = { defaults = {}, thin = { density_correction = "gmres", pressure_gradient = "difference" } }
+local OPTIONS = { defaults = {}, thin = { thin_film = true } }
 local runs = {}
 for k in tostring(o.runs or "defaults,thin"):gmatch("[%a_]+") do
   if not OPTIONS[k] then

@@ -159,7 +159,7 @@ end
 -- within 2 % of its later course by t = 0.004, 0.08 Re h0^2), while the gap has closed by
 -- 0.5-1 %. Resolutions by rows across the gap (dx = h0 / rows).
 local FILM = { Re = 0.05, t0 = 0.005, t1 = 0.01 }
-local THIN = { pressure_gradient = "difference" } -- README, Thin films: at constant velocity
+local THIN = { thin_film = true } -- README, Thin films
 local function film_ref(h, a, Re)
   local r = h / a
   return 8 * (a / h) ^ 3 * (1 - 0.151 * r + 1.17 * r * r) * (1 + 17 / 70 * Re * h)
@@ -195,7 +195,7 @@ local function section2()
   local cases = {}
   for _, ar in ipairs(ars) do cases[#cases + 1] = { ar = ar, label = ("a/h = %g"):format(ar) } end
   if not opt.ar then
-    cases[#cases + 1] = { ar = 10, label = "a/h = 10, pressure_gradient = difference", world = THIN }
+    cases[#cases + 1] = { ar = 10, label = "a/h = 10, thin_film = true", world = THIN }
   end
   local series = {}
   w_md("## Thin films (section 2)\n\n",
@@ -212,8 +212,8 @@ local function section2()
     "is the least-squares line of the ratio against t over the window taken at t = 0, the rectangle at the start, ",
     "without the drift (where the force alternates from step to step, as at a/h = 10, it is mostly noise). Resolutions ",
     "by particle rows across the gap: 16, 32, 64 (8 rows is under the 12 below which the README calls the defaults ",
-    "unreliable in a film, and leaves 5-16 steps in the window). The last case is the README's thin-film option at constant velocity ",
-    "(`pressure_gradient = \"difference\"`; the free surface then holds p = 0, which REFERENCES.md puts at ",
+    "unreliable in a film, and leaves 5-16 steps in the window). The last case is the README's thin-film scheme ",
+    "(`thin_film = true`; the free surface then holds p = 0, which REFERENCES.md puts at ",
     "h^2 / (2 a^2) = 0.5 % of the force at a/h = 10).\n\n",
     "| case | rows (dx) | F | F_FE | F / F_FE | error | observed order | F / F_FE at t = 0+ | peak density error | steps | s |\n",
     "|---|---|---|---|---|---|---|---|---|---|---|\n")

@@ -110,11 +110,11 @@ static void descend_if_above(sph_world *w) {
 #define FALLBACK_WAIT 10
 #define FALLBACK_WAIT_MAX 640
 int sph_density_correct(sph_world *w) {
-    /* density_correction = "gmres": its directions, then the descent (below) when they
+    /* the thin-film scheme: GMRES's directions, then the descent (below) when they
      * leave the error above DENSITY_LIMIT: its eight directions can leave a step above 1 %
      * (next to the symmetry plane, or at a film's front), and the descent brings it to the
      * limit. */
-    if (w->par.density_gmres) {
+    if (w->par.thin_film) {
         if (density_gmres(w)) return -1;
         descend_if_above(w);
         return 0;

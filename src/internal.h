@@ -215,10 +215,10 @@ static inline int sph_particle_yielded(const sph_world *w, int i) {
     return sph_particle_stress(w, i) > w->mats[w->mat[i]].tau0;
 }
 /* The traction-free free surface (viscous.c) is carried with the symmetric pressure
- * gradient (the default), for every material law; with the difference form (the thin-film
- * option) the surface holds p = 0. */
+ * gradient (the default), for every material law; with the thin-film scheme's difference
+ * form the surface holds p = 0. */
 static inline int sph_surface_traction(const sph_world *w) {
-    return w->par.pressure_gradient == SPH_GRAD_SYMMETRIC;
+    return !w->par.thin_film;
 }
 /* g_i = sum_j V_j grad_i W_ij over all neighbours: zero in a full, even support, -|g| n
  * next to a free surface (the truncated support's boundary moment) */

@@ -233,6 +233,8 @@ static const char *const REMOVED[][2] = {
     {"density_descent", "makes up to 20 descent moves when the density passes stall"},
     {"density_solve_tol", "solves the density correction to a relative residual of 1e-3"},
     {"density_diffusion", "leaves the density unfiltered"},
+    {"density_correction", "corrects the density by passes, or by GMRES with thin_film = true"},
+    {"pressure_gradient", "takes the symmetric pressure gradient, or the difference form with thin_film = true"},
     {"density_wait", "makes the passes the density error asks for at every step"},
     {"density_probe", "tries a later density pass after one that moved nothing on a loose solve first"},
     {"density_gradient", "moves the first density pass along whichever gradient lowers the error more"},
@@ -254,8 +256,7 @@ static const struct {
     {"cfl", offsetof(sph_params, cfl)},
 };
 #define N_NUMBER_OPTS (sizeof NUMBER_OPTS / sizeof NUMBER_OPTS[0])
-static const char *const OTHER_OPTS[] = {"gravity", "viscosity", "periodic", "symmetry", "threads",
-                                         "density_correction", "pressure_gradient"};
+static const char *const OTHER_OPTS[] = {"gravity", "viscosity", "periodic", "symmetry", "threads", "thin_film"};
 #define N_OTHER_OPTS (sizeof OTHER_OPTS / sizeof OTHER_OPTS[0])
 
 static int l_world(lua_State *L) {
@@ -298,10 +299,11 @@ static int l_world(lua_State *L) {
     lua_pop(L, 1);
     p.viscosity = opt_choice(L, "viscosity", "implicit", "explicit", p.viscosity == SPH_VISC_EXPLICIT)
                       ? SPH_VISC_EXPLICIT : SPH_VISC_IMPLICIT;
-    p.density_gmres = opt_choice(L, "density_correction", "passes", "gmres", p.density_gmres);
-    p.pressure_gradient = opt_choice(L, "pressure_gradient", "symmetric", "difference",
-                                     p.pressure_gradient == SPH_GRAD_DIFFERENCE)
-                              ? SPH_GRAD_DIFFERENCE : SPH_GRAD_SYMMETRIC;
+    t = lua_getfield(L, 1, "thin_film");
+    if (t != LUA_TNIL && t != LUA_TBOOLEAN)
+        luaL_error(L, "bad argument to 'world' (thin_film: boolean expected, got %s)", luaL_typename(L, -1));
+    p.thin_film = lua_toboolean(L, -1);
+    lua_pop(L, 1);
     t = lua_getfield(L, 1, "periodic");
     if (t == LUA_TTABLE) {
         axis_range(L, lua_gettop(L), "world", "periodic", "x", &p.periodic[0], &p.period_lo[0], &p.period_hi[0]);

@@ -35,18 +35,17 @@
  * the viscous solve is stiff it cannot restore the pressure the kernel average erodes a
  * little every step.
  *
- * Thin films (docs/limitations.md) have two options, off by default:
- * density_correction = "gmres" (density.c, density_gmres) minimises the continuity density
- * error over the Krylov space of the correction; pressure_gradient = "difference" takes the
- * projection's gradient in the renormalised difference form L sum_j V_j (p_j - p_i) grad W_ij
- * (Lind et al. 2012), which has no term in p_i. That term scales with a thin film's large
+ * Thin films (docs/limitations.md) have a scheme of their own, off by default (thin_film,
+ * sph.h): the density correction (density.c, density_gmres) minimises the continuity density
+ * error over the Krylov space of its passes, and the projection takes its gradient in the
+ * renormalised difference form L sum_j V_j (p_j - p_i) grad W_ij (Lind et al. 2012), which
+ * has no term in p_i. That term scales with a thin film's large
  * pressure level and drives a residual-divergence mode with DG / L > 2, amplified by
  * 1 - DG / L < -1 each step: the plate force alternates from step to step and grows. The
  * plate force stays the symmetric sum over fluid-wall pairs, a measure of the pressure on
- * the plate's face. Not the defaults: with the density error removed, the density-error
- * step control does not shorten dt and the squeezes' time errors show, and the difference
- * form does not conserve momentum (a loaded plate does not meet the fluid's reaction
- * exactly). */
+ * the plate's face. Not the default: the difference form does not conserve momentum (a
+ * loaded plate does not meet the fluid's reaction exactly) and cannot carry the
+ * traction-free surface, whose normal stress is a large share of a thick sample's force. */
 #include "internal.h"
 #include "kernel.h"
 
@@ -291,7 +290,7 @@ int sph_pressure_solve(sph_world *w, double dt) {
             }
         }
         A->col[A->start[r]] = r;
-        if (fl && w->par.pressure_gradient == SPH_GRAD_SYMMETRIC) /* see SELF_TERM above */
+        if (fl && !w->par.thin_film) /* see SELF_TERM above */
             diag += mi * (gx * (lxx * gx + lxy * gy) + gy * (lxy * gx + lyy * gy)) / (rhoi * rhoi * rho0);
         if (diag <= 0.0) diag = mi; /* isolated: p = 0 */
         A->val[A->start[r]] = diag;
@@ -452,12 +451,12 @@ static double advance_density(sph_world *w, const double *ax, const double *ay, 
 }
 
 /* u^{n+1} = u* - dt (grad p / rho); continuity with u^{n+1}; x^{n+1} = x^n + dt (u^n + u^{n+1}) / 2.
- * The gradient is the symmetric form by default; pressure_gradient = difference takes the
+ * The gradient is the symmetric form by default; the thin-film scheme takes the
  * renormalised difference form (see sph.h and the thin-film notes at the top). The plate
  * force is the symmetric sum of the fluid-wall pairs either way: a measure of the pressure
  * on the plate's face. */
 void sph_pressure_correct(sph_world *w, double dt) {
-    int n = w->n, diff = w->par.pressure_gradient == SPH_GRAD_DIFFERENCE;
+    int n = w->n, diff = w->par.thin_film;
     if (!diff) sph_pressure_neg_grad_prepare(w, w->p, w->sa);
 #pragma omp parallel for schedule(static) num_threads(w->threads)
     for (int i = 0; i < n; i++) {

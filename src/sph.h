@@ -64,16 +64,14 @@ typedef struct sph_params {
     double surface_div;    /* free surface where div r < this, >= 0 (2D: 2 full) */
     double density_tol;    /* dt shrinks while the max density error exceeds this
                               (0: no control); default 0.005                        */
-    int density_gmres;     /* 1: the density correction minimises the continuity
-                              density's error over the Krylov space of its passes
-                              (GMRES; density.c); 0 (default): successive passes,
-                              each with a least-squares step length                 */
-    int pressure_gradient; /* the projection's gradient: SPH_GRAD_SYMMETRIC (default,
-                              momentum-conserving) or SPH_GRAD_DIFFERENCE (first-order
-                              consistent: renormalised sum V_j (p_j - p_i) grad W)    */
+    int thin_film;         /* 1: the thin-film scheme, for films a/h >= 5 of 16 rows
+                              or fewer, where the free surface's traction is a share
+                              h^2 / (2 a^2) of the force: the projection's gradient in
+                              the renormalised difference form with p = 0 at the free
+                              surface, and the density correction as GMRES over its
+                              passes (pressure.c, density.c). 0 (default): the
+                              symmetric gradient, the traction-free surface          */
 } sph_params;
-
-enum { SPH_GRAD_SYMMETRIC = 0, SPH_GRAD_DIFFERENCE = 1 };
 
 void sph_params_default(sph_params *p);
 

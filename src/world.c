@@ -22,8 +22,7 @@ void sph_params_default(sph_params *p) {
     p->tol = 1e-6;
     p->surface_div = 1.5;
     p->density_tol = 0.005;
-    p->density_gmres = 0;
-    p->pressure_gradient = SPH_GRAD_SYMMETRIC;
+    p->thin_film = 0;
 }
 
 int sph_world_fail(sph_world *w, const char *fmt, ...) {
@@ -42,8 +41,7 @@ static const char *check_params(const sph_params *p) {
     static const char *const bad[] = {
         "dx must be a positive number", "rho must be a positive number", "periodic range must have lo < hi",
         "an axis cannot be both periodic and a symmetry plane", "tol must be in (0, 1)", "gravity must be finite",
-        "shifting must be >= 0", "density_tol must be in [0, 1)", "density_gmres must be 0 or 1",
-        "pressure_gradient must be SPH_GRAD_SYMMETRIC or SPH_GRAD_DIFFERENCE",
+        "shifting must be >= 0", "density_tol must be in [0, 1)", "thin_film must be 0 or 1",
         "threads must be 1..256 (0: all cores)", "dt_max must be a number >= 0 (0: no bound)",
         "surface must be a number >= 0 (0: no free surface)",
         "h must be 0 (dx) or between dx and 2 dx: the kernel's support 3 h must hold the lattice's neighbours",
@@ -59,13 +57,12 @@ static const char *check_params(const sph_params *p) {
     if (!isfinite(p->gravity[0]) || !isfinite(p->gravity[1])) return bad[5];
     if (!(p->shifting >= 0)) return bad[6];
     if (!(p->density_tol >= 0 && p->density_tol < 1)) return bad[7];
-    if (p->density_gmres != 0 && p->density_gmres != 1) return bad[8];
-    if (p->pressure_gradient != SPH_GRAD_SYMMETRIC && p->pressure_gradient != SPH_GRAD_DIFFERENCE) return bad[9];
-    if (!(p->threads >= 0 && p->threads <= SPH_MAX_THREADS)) return bad[10];
-    if (!(p->dt_max >= 0 && isfinite(p->dt_max))) return bad[11];
-    if (!(p->surface_div >= 0 && isfinite(p->surface_div))) return bad[12];
-    if (!(p->h == 0 || (p->h >= p->dx && p->h <= 2 * p->dx))) return bad[13];
-    if (!(p->cfl == 0 || (p->cfl > 0 && p->cfl <= 1))) return bad[14];
+    if (p->thin_film != 0 && p->thin_film != 1) return bad[8];
+    if (!(p->threads >= 0 && p->threads <= SPH_MAX_THREADS)) return bad[9];
+    if (!(p->dt_max >= 0 && isfinite(p->dt_max))) return bad[10];
+    if (!(p->surface_div >= 0 && isfinite(p->surface_div))) return bad[11];
+    if (!(p->h == 0 || (p->h >= p->dx && p->h <= 2 * p->dx))) return bad[12];
+    if (!(p->cfl == 0 || (p->cfl > 0 && p->cfl <= 1))) return bad[13];
     return 0;
 }
 

@@ -12,7 +12,7 @@
 -- dx = 1/20 a particle goes through a plate near h = 0.25; 7 particles span the gap at
 -- h = 0.35). It is not a >> h: lubrication leaves out corrections of relative order h / a
 -- (the free edge's bulge, the extensional stresses), 0.25-0.4 in the window. Thinner
--- films need the thin-film options: the film cases below.
+-- films need the thin-film scheme: the film cases below.
 --
 -- The cases (measured figures in tests/lua/test_squeeze_validation.lua):
 --   1. Newtonian at V = 1, Re = 0.1 (Stokes flow, as lubrication assumes; at Re = 1
@@ -313,8 +313,8 @@ local function bingham_load_case(name, opts)
 end
 
 local BN = 100
--- the thin-film options (README, Thin films) the film cases run with
-local THIN = { density_correction = "gmres", pressure_gradient = "difference" }
+-- the thin-film scheme (README, Thin films) the film cases run with
+local THIN = { thin_film = true }
 
 M.cases = {
   {
@@ -327,12 +327,12 @@ M.cases = {
   },
   {
     -- the thin-film regime: a film started thin (half-width 1.6, height 0.2, a/h 8.4 at the
-    -- start) squeezed to h = 0.17 with the thin-film options (pressure.c); the window starts
+    -- start) squeezed to h = 0.17 with the thin-film scheme (pressure.c); the window starts
     -- 0.02 of time after the impulsive start (Re = 1: the gap's viscous time rho h^2 / mu is
     -- 0.03). The force approaches lubrication from below (0.86 of it at 1/30, 0.93 at
     -- 1/80); part of what is left is the walls' first-order slip (docs/limitations.md).
     name = "Newtonian squeeze, thin film",
-    error_name = "relative L2 of the plate force against lubrication over h in [0.17, 0.18] (a/h 9.9-11), film started thin (h0 = 0.2, half-width 1.6), Re = 1, density_correction = gmres, pressure_gradient = difference",
+    error_name = "relative L2 of the plate force against lubrication over h in [0.17, 0.18] (a/h 9.9-11), film started thin (h0 = 0.2, half-width 1.6), Re = 1, thin_film = true",
     resolutions = { 1 / 30, 1 / 40, 1 / 60, 1 / 80 },
     quick = { 1 / 30, 1 / 40 },
     run = velocity_case("Newtonian squeeze, thin film", { Re = 1, Bn = 0, h_end = 0.17, h_win = 0.18, width = 1.6, height = 0.2,
@@ -345,7 +345,7 @@ M.cases = {
     -- defaults (passes, symmetric gradient) the film blows up at every resolution
     -- (non-positive density near h = 0.18).
     name = "Bingham squeeze, thin film",
-    error_name = "relative L2 of the plate force against thin-film Bingham theory over h in [0.17, 0.18] (a/h 9.9-11), film started thin (h0 = 0.2, half-width 1.6), Bn = 100, M = 100, Re = 1, density_correction = gmres, pressure_gradient = difference",
+    error_name = "relative L2 of the plate force against thin-film Bingham theory over h in [0.17, 0.18] (a/h 9.9-11), film started thin (h0 = 0.2, half-width 1.6), Bn = 100, M = 100, Re = 1, thin_film = true",
     resolutions = { 1 / 30, 1 / 40, 1 / 60, 1 / 80 },
     quick = { 1 / 30, 1 / 40 },
     run = velocity_case("Bingham squeeze, thin film", { Re = 1, Bn = BN, M = 100, h_end = 0.17, h_win = 0.18, width = 1.6, height = 0.2,
@@ -365,7 +365,7 @@ M.cases = {
     -- a time-step error, the projection's residual divergence next to the plates
     -- (docs/limitations.md).
     name = "Newtonian squeeze under load, thin film",
-    error_name = "relative error of the slope of h^-5 against t (lubrication: 5 F / (mu A^3)) over h in [0.17, 0.18] (a/h 9.9-11), film started thin (h0 = 0.2, half-width 1.6), F = 400, Re = 1, density_correction = gmres, pressure_gradient = difference",
+    error_name = "relative error of the slope of h^-5 against t (lubrication: 5 F / (mu A^3)) over h in [0.17, 0.18] (a/h 9.9-11), film started thin (h0 = 0.2, half-width 1.6), F = 400, Re = 1, thin_film = true",
     resolutions = { 1 / 30, 1 / 40, 1 / 60, 1 / 80 },
     quick = { 1 / 30, 1 / 40 },
     run = load_case("Newtonian squeeze under load, thin film", { Re = 1, F = 400, h_end = 0.17, h_win = 0.18, width = 1.6, height = 0.2,

@@ -66,12 +66,13 @@ T.case("world arguments", function()
   T.checkerror("dx: number expected", "world with a string dx", sph.world, { dx = "a" })
   T.checkerror("unknown option 'dxx'", "misspelt option is an error", sph.world, { dx = 0.1, dxx = 1 })
   T.checkerror("viscosity", "bad viscosity", sph.world, { dx = 0.1, viscosity = "magic" })
-  T.checkerror("density_correction: \"passes\" or \"gmres\" expected", "bad density_correction", sph.world,
-               { dx = 0.1, density_correction = "newton" })
-  T.checkerror("pressure_gradient: \"symmetric\" or \"difference\" expected", "bad pressure_gradient", sph.world,
-               { dx = 0.1, pressure_gradient = 2 })
-  T.check(pcall(sph.world, { dx = 0.1, density_correction = "gmres", pressure_gradient = "difference" }),
-          "the thin-film options are accepted")
+  T.checkerror("thin_film: boolean expected, got string", "bad thin_film", sph.world, { dx = 0.1, thin_film = "yes" })
+  T.check(pcall(sph.world, { dx = 0.1, thin_film = true }) and pcall(sph.world, { dx = 0.1, thin_film = false }),
+          "thin_film = true / false are accepted")
+  T.checkerror("'density_correction' was removed", "the old thin-film option names say where they went", sph.world,
+               { dx = 0.1, density_correction = "gmres" })
+  T.checkerror("thin_film = true", "the removed pressure_gradient names thin_film", sph.world,
+               { dx = 0.1, pressure_gradient = "difference" })
   T.checkerror("gravity", "bad gravity", sph.world, { dx = 0.1, gravity = 3 })
   T.checkerror("periodic", "bad periodic", sph.world, { dx = 0.1, periodic = { x = { 1 } } })
   T.checkerror("periodic range", "periodic lo >= hi", sph.world, { dx = 0.1, periodic = { x = { 1, 0 } } })

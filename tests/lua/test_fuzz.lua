@@ -93,15 +93,14 @@ local function material()
 end
 
 local WORLD_KEYS = { "rho", "gravity", "viscosity", "shifting", "dt_max", "periodic", "symmetry",
-                     "threads", "tol", "surface", "density_tol", "density_correction", "pressure_gradient" }
+                     "threads", "tol", "surface", "density_tol", "thin_film" }
 local WORLD_GEN = {
   gravity = function() return { 0, pick{ 0, -1, -10 } } end,
   threads = function() return pick{ 1, 1, 2, 0, -1, 257, 2.5 } end,
   periodic = function() return { x = { -0.5, 1.5 } } end,
   symmetry = function() return pick{ { x = 0 }, { y = 0 }, { x = 1e300 } } end,
   viscosity = function() return pick{ "implicit", "explicit", "other" } end,
-  density_correction = function() return pick{ "passes", "gmres" } end,
-  pressure_gradient = function() return pick{ "symmetric", "difference" } end,
+  thin_film = function() return pick{ true, false, "yes" } end,
 }
 
 -- A lattice the engine would take but that is large (a real fill of millions of particles,

@@ -79,8 +79,8 @@ end)
 
 T.case("Newtonian squeeze in the thin-film regime against lubrication", function()
   local rs, order = study(cases["Newtonian squeeze, thin film"])
-  -- a film started thin (a/h 9.9-11 in the window), with the thin-film options
-  -- (density_correction = gmres, pressure_gradient = difference). Measured (one thread):
+  -- a film started thin (a/h 9.9-11 in the window), with the thin-film scheme
+  -- (thin_film = true). Measured (one thread):
   -- errors 0.1475 / 0.1217 (order 0.67; force 0.860 / 0.884 x lubrication) with -O2,
   -- 0.1593 / 0.1226 (order 0.91) under make check's -O1 sanitizer build; finer, 0.1102
   -- / 0.0861 / 0.088 at 1/60, 1/80, 1/100 (make bench). Lubrication is the limit at a/h
@@ -94,7 +94,7 @@ end)
 
 T.case("Bingham squeeze in the thin-film regime against thin-film theory", function()
   local rs = study(cases["Bingham squeeze, thin film"])
-  -- the Newtonian case's film, Bn = 100, M = 100 (thin-film options). Measured (one
+  -- the Newtonian case's film, Bn = 100, M = 100 (thin-film scheme). Measured (one
   -- thread): force / theory 1.0116 and 0.9971 with -O2, 1.0117 and 0.9960 with -O1: the
   -- references, within 0.03. The mean ratio is the stable figure: the L2 error carries the
   -- force's step-to-step noise and spreads over 0.023-0.076 at 1/30 across 18 round-off
@@ -135,7 +135,7 @@ end)
 
 T.case("Newtonian squeeze under a constant load in the thin-film regime against lubrication", function()
   local rs, order = study(cases["Newtonian squeeze under load, thin film"])
-  -- the film started thin (h0 = 0.2, half-width 1.6, thin-film options) under F = 400 (the
+  -- the film started thin (h0 = 0.2, half-width 1.6, thin-film scheme) under F = 400 (the
   -- plate closes at 0.05-0.1, Re = 1: nearly Stokes flow); error |slope of h^-5 / (5 F /
   -- (mu A^3)) - 1| over h in [0.17, 0.18]. Measured over 18 round-off variants (1 and 2
   -- threads x pressure tolerance 1e-6 / 1e-7 / 1e-8 x dx and dx +- 1e-10): 0.360-0.382 at

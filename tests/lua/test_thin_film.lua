@@ -1,7 +1,7 @@
 -- A Newtonian film started thin (half sample 1.6 wide, 0.2 high: a/h = 8.4 at the start,
 -- Re = 1, V = 1, dx = 1/40, 8 particle rows across), squeezed to h = 0.17 (a/h = 11), with
--- the thin-film options density_correction = "gmres" and pressure_gradient = "difference"
--- (pressure.c). Measured (one thread): peak max density error 0.80 % over 627 steps (1.6 s),
+-- the thin-film scheme (thin_film = true: the density correction by GMRES, the difference
+-- gradient; pressure.c). Measured (one thread): peak max density error 0.80 % over 627 steps (1.6 s),
 -- plate force / lubrication (F = mu V A^3 / h^6, A = 0.64) 0.86-0.88 at h = 0.175-0.17;
 -- with GMRES alone the error peaks at 0.96 %, with the difference gradient alone at 7.8 %.
 -- At dx = 1/80 (16 rows) the defaults' plate force runs away at h = 0.191 (a pressure mode
@@ -13,10 +13,10 @@ local squeeze = require "sph.squeeze"
 local T = require "sph.test"
 local o = ... or {}
 
-T.case("film started thin, dx = 1/40, gmres + difference gradient, to h = 0.17", function()
+T.case("film started thin, dx = 1/40, thin-film scheme, to h = 0.17", function()
   local a0, h0 = 1.6, 0.2
   local w, top = squeeze.build{ dx = 1 / 40, Re = 1, Bn = 0, mode = "velocity", width = a0, height = h0, h_min = 0.17,
-                                world = { threads = o.threads or 1, density_correction = "gmres", pressure_gradient = "difference" } }
+                                world = { threads = o.threads or 1, thin_film = true } }
   local A, peak, sum, n = 2 * a0 * h0, 0, 0, 0
   local ok, err = pcall(function()
     while top.position > 0.17 do

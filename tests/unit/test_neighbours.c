@@ -171,7 +171,7 @@ static void check_momentum(void) {
     sph_world_free(w);
 }
 
-/* pressure_gradient = difference: the renormalised difference form is exact for a linear
+/* the thin-film scheme's gradient: the renormalised difference form is exact for a linear
  * pressure, whatever the disorder and the pressure's level (the symmetric form is not:
  * its p_i sum_j V_j grad W_ij term scales with the level). A perturbed lattice, p = 1000 +
  * 3 x - 5 y: the velocity change of every particle away from the block's edges (where the
@@ -182,7 +182,7 @@ static void check_difference_gradient(void) {
         sph_params_default(&p);
         p.dx = 0.05;
         p.threads = 2;
-        p.pressure_gradient = form ? SPH_GRAD_DIFFERENCE : SPH_GRAD_SYMMETRIC;
+        p.thin_film = form;
         sph_material m = {SPH_NEWTONIAN, 1.0, 0, 0, 0, 0};
         sph_world *w = unit_block(&p, &m);
         uint64_t s = 99;
