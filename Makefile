@@ -69,14 +69,14 @@ $(B):
 	mkdir -p $(B)
 
 test: all
-	@CC="$(CC)" sh tests/run.sh $(B)
+	@CC="$(CC)" bash tests/run.sh $(B)
 
 # the suite under the sanitizers; the API fuzz test (tests/lua/test_fuzz.lua) makes 30,000
 # calls there, with the seed SPH_FUZZ_SEED from the environment (else the clock's; printed)
 check:
 	$(MAKE) SANITIZE=1 OPT=-O1 all
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 SPH_FUZZ_CALLS=$${SPH_FUZZ_CALLS:-30000} \
-	    SPH_FUZZ_SEED=$${SPH_FUZZ_SEED:-$$(date +%s)} CC="$(CC)" sh tests/run.sh build-san
+	    SPH_FUZZ_SEED=$${SPH_FUZZ_SEED:-$$(date +%s)} CC="$(CC)" bash tests/run.sh build-san
 
 # make bench [only=WORD,...|none] [quick=1]: see scripts/bench.sh
 bench: all $(B)/bench_render

@@ -57,7 +57,8 @@ typedef struct sph_params {
     double period_lo[2], period_hi[2];
     int symmetry[2];       /* mirror plane x = sym_at[0] / y = sym_at[1]           */
     double sym_at[2];
-    int threads;           /* 0: all cores; at most SPH_MAX_THREADS (see "Threads") */
+    int threads;           /* 0: OMP_NUM_THREADS if set, else all cores; at most
+                              SPH_MAX_THREADS (see "Threads")                      */
     double tol;            /* relative residual of every solve, the pressure's and
                               the implicit viscous step's; default 1e-6
                               (docs/performance.md: what looser costs)               */
@@ -75,8 +76,9 @@ typedef struct sph_params {
 
 void sph_params_default(sph_params *p);
 
-/* Threads. A world runs threads OpenMP threads (sph_params.threads; 0, the default: one per
- * core the machine has, at most SPH_MAX_THREADS; sph.world{threads = n}). At a barrier
+/* Threads. A world runs threads OpenMP threads (sph_params.threads; 0, the default:
+ * OMP_NUM_THREADS where the environment sets it, else one per core the machine has, at
+ * most SPH_MAX_THREADS; sph.world{threads = n}). At a barrier
  * they spin briefly, then sleep: the sph host sets GOMP_SPINCOUNT=10000 when the
  * environment sets neither it nor OMP_WAIT_POLICY (main.c; it executes itself again for
  * it, as libgomp reads them only when it is loaded). libgomp's own long spin took a busy

@@ -99,7 +99,10 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
      * neighbours"). */
     w->h = p->h > 0 ? p->h : p->dx;
     w->mass0 = p->rho0 * p->dx * p->dx;
-    w->threads = p->threads > 0 ? p->threads : omp_get_num_procs();
+    /* 0: OMP_NUM_THREADS where it is set (the OpenMP convention: tests/run.sh sets it to 1
+     * while it runs two test programs at once), else every core */
+    const char *omp = getenv("OMP_NUM_THREADS");
+    w->threads = p->threads > 0 ? p->threads : omp && *omp ? omp_get_max_threads() : omp_get_num_procs();
     if (w->threads > SPH_MAX_THREADS) w->threads = SPH_MAX_THREADS; /* a machine of more cores */
     if (w->par.dt_min <= 0) w->par.dt_min = 1e-12 * w->h;
     if (w->par.cfl <= 0) w->par.cfl = SPH_CFL;
