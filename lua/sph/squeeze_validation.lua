@@ -106,6 +106,59 @@ function M.square_t0(n, Bn, opts)
            at_plates = un > 0 and near / un or 0 }
 end
 
+-- The film of REFERENCES.md section 2's fit: F_FE = 8 mu V (a/h)^3 [1 - 0.151 (h/a) + 1.17
+-- (h/a)^2] for a/h >= 2 (whole sample per unit depth, V = 1), times the quasi-steady inertia
+-- factor 1 + (17/70) Re h.
+function M.film_force(h, a, Re)
+  local r = h / a
+  return 8 * (a / h) ^ 3 * (1 - 0.151 * r + 1.17 * r * r) * (1 + 17 / 70 * Re * h)
+end
+
+-- A Newtonian film: the half sample of height 1 and half-width ar (sph.squeeze.build, V = -1,
+-- rows particles across the gap), its plate force over the window t in (opts.t0, opts.t1)
+-- (default 0.005, 0.01; Re = opts.Re, default 0.05; opts.world: engine options; on_world(w)).
+-- The no-slip plates hold the sample's contact where it was while its free sides bulge, so
+-- the reference is the rectangle of the current gap and the current contact half-width
+-- (ratio_c: the outermost particle of the rows within dx of either plate, plus dx / 2); the
+-- rectangle of the sample's area (a = A / (2h), ratio) runs ahead of it by about
+-- 3 (a_area - a_c) / a. ratio0: the least-squares line of ratio against t at t = 0.
+-- Returns { F, Fref (the area's), ratio, ratio_c, ratio0, a_c, a_area (at the end), samples,
+-- h, steps, cpu, peak, fluid }.
+function M.film(ar, rows, opts)
+  opts = opts or {}
+  local Re, t0, t1 = opts.Re or 0.05, opts.t0 or 0.005, opts.t1 or 0.01
+  local dx = 1 / rows
+  local w, top = squeeze.build{ dx = dx, Re = Re, Bn = 0, mode = "velocity", V = 1, width = ar, height = 1,
+                                h_min = 0.9, world = opts.world or { threads = 1 } }
+  if opts.on_world then opts.on_world(w) end
+  local A = 2 * w:stats().fluid * dx * dx
+  local function contact(h)
+    local x, y, ct, cb = w:field("x"), w:field("y"), 0, 0
+    for i = 1, #x do
+      if y[i] > h - dx and x[i] > ct then ct = x[i] end
+      if y[i] < dx and x[i] > cb then cb = x[i] end
+    end
+    return 0.5 * (ct + cb) + 0.5 * dx
+  end
+  local sf, sr, sq, m, st, stt, stq, sc, ac = 0, 0, 0, 0, 0, 0, 0, 0, 0
+  while w.t < t1 do
+    w:step()
+    if w.t > t0 then
+      local h, F, t = top.position, top.force, w.t
+      local ref = M.film_force(h, A / (2 * h), Re)
+      local a = contact(h)
+      sf, sr, sq, m = sf + F, sr + ref, sq + F / ref, m + 1
+      st, stt, stq = st + t, stt + t * t, stq + t * F / ref
+      sc, ac = sc + F / M.film_force(h, a, Re), a
+    end
+  end
+  local s = w:stats()
+  local slope = (m * stq - st * sq) / (m * stt - st * st)
+  return { F = sf / m, Fref = sr / m, ratio = sq / m, ratio0 = (sq - slope * st) / m, ratio_c = sc / m, a_c = ac,
+           a_area = A / (2 * top.position), samples = m, h = top.position,
+           steps = w.steps, cpu = s.wall_time, peak = s.peak_density_error, fluid = s.fluid }
+end
+
 -- Thin-film Bingham squeeze of a sample of area A (default 1) at closing speed V: at
 -- every x the film carries the flux q = V x (half sample) as a Bingham plane Poiseuille
 -- flow under the pressure gradient G = -dp/dx. With phi = tau0 / tau_wall = 2 tau0 / (G h)
