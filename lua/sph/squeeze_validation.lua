@@ -70,7 +70,8 @@ end
 --     about the shape. Defined where F(t) is smooth (Bn = 0, 10); at Bn = 1000 the force
 --     builds up over the first 0.005 and falls nonlinearly: use ratio.
 -- opts as M.square_world's (on_world: a caller that catches an engine error still has the
--- world; dt_max none: the engine's step). Returns { ratio, spread, ratio0, steps, cpu,
+-- world; dt_max none: the engine's step), and t0, t1: ratio's window (0.005, 0.02; the run
+-- ends at t1, ratio0's line is over (t1 / 2, t1)). Returns { ratio, spread, ratio0, steps, cpu,
 -- unyielded (the share of unyielded particles at the end), at_plates (the share of those
 -- within 0.25 of a plate and at x < 0.45, where FE's wedges are at Bn = 10), particles }.
 function M.square_t0(n, Bn, opts)
@@ -80,13 +81,14 @@ function M.square_t0(n, Bn, opts)
   local k = math.log(f8 / f1) / -math.log(0.8)
   local s, s2, m = 0, 0, 0
   local L = { n = 0, t = 0, tt = 0, f = 0, tf = 0 } -- the least-squares line of F / F_FE(1) in t
-  while w.t < 0.02 do
+  local t0, t1 = opts.t0 or 0.005, opts.t1 or 0.02
+  while w.t < t1 do
     w:step()
-    if w.t > 0.005 then
+    if w.t > t0 then
       local r = math.abs(top.force) / (f1 * top.position ^ -k)
       s, s2, m = s + r, s2 + r * r, m + 1
     end
-    if w.t > 0.01 then
+    if w.t > 0.5 * t1 then
       local f, t = math.abs(top.force) / f1, w.t
       L.n, L.t, L.tt, L.f, L.tf = L.n + 1, L.t + t, L.tt + t * t, L.f + f, L.tf + t * f
     end
@@ -124,6 +126,17 @@ end
 -- 3 (a_area - a_c) / a. ratio0: the least-squares line of ratio against t at t = 0.
 -- Returns { F, Fref (the area's), ratio, ratio_c, ratio0, a_c, a_area (at the end), samples,
 -- h, steps, cpu, peak, fluid }.
+-- The contact half-width of a sample between plates at y = 0 and y = h: the outermost
+-- particle of the rows within dx of either plate, plus dx / 2 (the mean of the two plates).
+function M.contact_half_width(w, h, dx)
+  local x, y, ct, cb = w:field("x"), w:field("y"), 0, 0
+  for i = 1, #x do
+    if y[i] > h - dx and x[i] > ct then ct = x[i] end
+    if y[i] < dx and x[i] > cb then cb = x[i] end
+  end
+  return 0.5 * (ct + cb) + 0.5 * dx
+end
+
 function M.film(ar, rows, opts)
   opts = opts or {}
   local Re, t0, t1 = opts.Re or 0.05, opts.t0 or 0.005, opts.t1 or 0.01
@@ -132,21 +145,13 @@ function M.film(ar, rows, opts)
                                 h_min = 0.9, world = opts.world or { threads = 1 } }
   if opts.on_world then opts.on_world(w) end
   local A = 2 * w:stats().fluid * dx * dx
-  local function contact(h)
-    local x, y, ct, cb = w:field("x"), w:field("y"), 0, 0
-    for i = 1, #x do
-      if y[i] > h - dx and x[i] > ct then ct = x[i] end
-      if y[i] < dx and x[i] > cb then cb = x[i] end
-    end
-    return 0.5 * (ct + cb) + 0.5 * dx
-  end
   local sf, sr, sq, m, st, stt, stq, sc, ac = 0, 0, 0, 0, 0, 0, 0, 0, 0
   while w.t < t1 do
     w:step()
     if w.t > t0 then
       local h, F, t = top.position, top.force, w.t
       local ref = M.film_force(h, A / (2 * h), Re)
-      local a = contact(h)
+      local a = M.contact_half_width(w, h, dx)
       sf, sr, sq, m = sf + F, sr + ref, sq + F / ref, m + 1
       st, stt, stq = st + t, stt + t * t, stq + t * F / ref
       sc, ac = sc + F / M.film_force(h, a, Re), a

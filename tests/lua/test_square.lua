@@ -78,20 +78,11 @@ T.case("Bingham square, Bn = 1000: the force's deficit is the time step's, conve
   -- 0.9681 / 0.9851 / 0.9952 at dt = 2e-6 / 1e-6 / 4e-7 (errors 0.032 / 0.015 / 0.005: order
   -- 1.18 in dt; 7.5 s in all; 0.9985 at dx = 1/40, dt = 2.5e-7). Bounds: the error at 4e-7 at most 0.01
   -- (twice the measured), an order in dt of at least 0.8 from 2e-6 to 4e-7.
-  local sv = require "sph.squeeze_validation"
-  local refs = require "sph.references"
-  local f1, f8 = refs.FV[1000][1], refs.FV[1000][2]
-  local k = math.log(f8 / f1) / -math.log(0.8)
   local errs, dts = {}, { 2e-6, 1e-6, 4e-7 }
   for q, dt in ipairs(dts) do
-    local w, top = sv.square_world(20, 1000, { dt_max = dt })
-    local s, m = 0, 0
-    while w.t < 0.003 do
-      w:step()
-      if w.t > 0.002 then s, m = s + math.abs(top.force) / (f1 * top.position ^ -k), m + 1 end
-    end
-    errs[q] = math.abs(s / m - 1)
-    print(string.format("# square Bn = 1000, dx = 1/20, dt = %g: F / F_FE %.4f over t in (0.002, 0.003), %d steps", dt, s / m, w.steps))
+    local r = square_t0(20, 1000, { dt_max = dt, t0 = 0.002, t1 = 0.003 })
+    errs[q] = math.abs(r.ratio - 1)
+    print(string.format("# square Bn = 1000, dx = 1/20, dt = %g: F / F_FE %.4f over t in (0.002, 0.003), %d steps", dt, r.ratio, r.steps))
   end
   T.below(errs[3], 0.01, "square Bn = 1000, dx = 1/20, dt = 4e-7: the plate force within 1 % of FE")
   local order = math.log(errs[1] / errs[3]) / math.log(dts[1] / dts[3])

@@ -55,12 +55,7 @@ T.case("Newtonian squeeze against lubrication theory", function()
     local h = top.position
     if h <= 0.5 then lx[#lx + 1], ly[#ly + 1] = math.log(h), math.log(top.force) end
     if h >= 0.37 and h <= 0.45 then
-      local x, y, ct, cb = w:field("x"), w:field("y"), 0, 0
-      for i = 1, #x do
-        if y[i] > h - dx and x[i] > ct then ct = x[i] end
-        if y[i] < dx and x[i] > cb then cb = x[i] end
-      end
-      sc, nc = sc + top.force / sv.film_force(h, 0.5 * (ct + cb) + 0.5 * dx, 1), nc + 1
+      sc, nc = sc + top.force / sv.film_force(h, sv.contact_half_width(w, h, dx), 1), nc + 1
     end
   end }
   local n, sx, sy, sxx, sxy = #lx, 0, 0, 0, 0
