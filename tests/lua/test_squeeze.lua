@@ -50,12 +50,16 @@ T.case("Newtonian squeeze against lubrication theory", function()
   local dx = 1 / 40
   local w, top = squeeze.build{ dx = dx, Re = 1, Bn = 0, mode = "velocity", world = { threads = o.threads } }
   local lx, ly = {}, {}
-  local sc, nc = 0, 0 -- F over the FE film at the current gap and contact half-width
+  -- F over the FE film at the current gap and contact half-width, in three windows of h
+  local wins = { { lo = 0.5, hi = 0.6 }, { lo = 0.45, hi = 0.5 }, { lo = 0.37, hi = 0.45 } }
+  for _, b in ipairs(wins) do b.s, b.n = 0, 0 end
   w:run{ until_t = 0.66, every = 0.005, each = function()
     local h = top.position
     if h <= 0.5 then lx[#lx + 1], ly[#ly + 1] = math.log(h), math.log(top.force) end
-    if h >= 0.37 and h <= 0.45 then
-      sc, nc = sc + top.force / sv.film_force(h, sv.contact_half_width(w, h, dx), 1), nc + 1
+    for _, b in ipairs(wins) do
+      if h >= b.lo and h <= b.hi then
+        b.s, b.n = b.s + top.force / sv.film_force(h, sv.contact_half_width(w, h, dx), 1), b.n + 1
+      end
     end
   end }
   local n, sx, sy, sxx, sxy = #lx, 0, 0, 0, 0
@@ -64,16 +68,6 @@ T.case("Newtonian squeeze against lubrication theory", function()
   local ratio = math.exp((sy - slope * sx) / n + slope * math.log(0.35)) / squeeze.newtonian_force(0.35)
   print(string.format("# Newtonian: %d samples in h in [%.3f, 0.5], log-log slope %.3f, fitted F(0.35) / lubrication %.4f, %d steps",
     n, top.position, slope, ratio, w.steps))
-  -- measured (implicit, dx = 1/40, about 4,670 steps): slope -6.019 / -6.003 (-O2, one / two
-  -- threads), -6.093 / -5.816 (make check's -O1 build, one / two threads); F(0.35) 1.012-1.014
-  -- / 0.957 x lubrication mu V / h^6. The run is chaotic at the percent level: round-off
-  -- alone moves the slope by up to 0.28, so make check's one-thread run is 0.033 over the
-  -- bound (open: the measure needs a reference for the barrelled sample). The reference:
-  -- the FE rectangles' slope over h in [0.35, 0.5], -6 + ln(1.216 / 1.04) / ln(0.5 / 0.35) =
-  -- -5.56 (REFERENCES.md section 2: F_FE / F_lub 1.216 at a/h 2, about 1.04 at a/h 4.1);
-  -- the rectangles' contact width grows as a / h, the squeezed square's stays behind at
-  -- h = 0.5 and catches up by 0.35, which steepens its slope; bound 0.5.
-  T.below(math.abs(slope + 5.56), 0.5, "Newtonian squeeze: log-log slope of F against h within 0.5 of the FE rectangles' -5.56")
   -- With the traction-free free surface (p = n . tau . n) the ratio is 0.994 (one thread).
   -- The reference is the FE rectangle at a/h = 1 / (2 h^2) = 4.08, 1.033 x lubrication
   -- (REFERENCES.md section 2's fit); the sample's barrelling and inertia (Re h = 0.35) are
@@ -82,14 +76,21 @@ T.case("Newtonian squeeze against lubrication theory", function()
   T.below(top.position, 0.35, "Newtonian squeeze reaches h = 0.35")
   -- The squeezed square barrels: its contact with the no-slip plates (the outermost particle
   -- of the rows within dx of a plate, plus dx / 2) is 0.84-1.26 where the rectangle of its area
-  -- has 0.95-1.33 (h = 0.525-0.375). Against REFERENCES.md section 2's FE fit (a/h >= 2) at
-  -- the current gap and contact half-width, with the inertia factor 1 + (17/70) Re h: the
-  -- mean over the outputs with h in [0.37, 0.45] (16, every 0.005) measured 1.0012 / 1.0000
-  -- (-O2, one / two threads), 0.9888 (-O1, one thread); the force's step-to-step spread is
-  -- 0.06-0.07, so the mean's own is about 0.018. Bound 0.04 (the spread's two standard errors).
-  local mc = sc / nc
-  print(string.format("# Newtonian: F / F_FE at the contact half-width, mean of %d outputs with h in [0.37, 0.45]: %.4f", nc, mc))
-  T.below(math.abs(mc - 1), 0.04, "Newtonian squeeze: F within 4 % of FE's film at the current gap and contact width (h 0.37-0.45)")
+  -- has 0.95-1.33 (h = 0.525-0.375), so the rectangles' log-log slope (-5.56 over h in
+  -- [0.35, 0.5]) is not the sample's: the run's was -6.00 to -6.09 and moved by up to 0.28 with
+  -- round-off alone. The reference is REFERENCES.md section 2's FE fit at the current gap and
+  -- contact half-width (within 0.3 % of FE's table down to a/h = 0.78), with the inertia factor
+  -- 1 + (17/70) Re h, over three windows of h, so that the force's dependence on h is checked
+  -- along with its level. Means of the outputs (every 0.005) measured, h in [0.5, 0.6] /
+  -- [0.45, 0.5] / [0.37, 0.45]: 0.9933 / 0.9983 / 1.0012 (-O2, one thread), 0.9935 / 0.9985 /
+  -- 1.0000 (two threads), 0.9937 / 0.9987 / 0.9888 (make check's build); the force's
+  -- step-to-step spread is 0.026 / 0.058 / 0.07, so a mean's own is 0.006 / 0.018 / 0.018.
+  -- Bound 0.04 (at least two of those standard errors).
+  for _, b in ipairs(wins) do
+    local mc = b.s / b.n
+    print(string.format("# Newtonian: F / F_FE at the contact half-width, mean of %d outputs with h in [%.2f, %.2f]: %.4f", b.n, b.lo, b.hi, mc))
+    T.below(math.abs(mc - 1), 0.04, string.format("Newtonian squeeze: F within 4 %% of FE's film at the current gap and contact width (h %.2f-%.2f)", b.lo, b.hi))
+  end
 end)
 
 T.done()
