@@ -25,6 +25,36 @@ function R.interp(tab, h)
   end
 end
 
+-- Section 2: FE over lubrication (8 mu V a^3 / h^3) for a rectangle of half-width a and gap h,
+-- by aspect ratio a / h.
+R.AR = { 0.5, 0.78, 1.39, 2, 3.13, 5, 5.56, 10 }
+R.FE_LUB = { 5.25, 2.69, 1.49, 1.216, 1.071, 1.017, 1.011, 0.997 }
+
+-- The creeping Newtonian force of a rectangle of half-width a and gap h at V = 1 (whole sample,
+-- mu = 1): lubrication times FE's ratio, log-log between the table's aspect ratios, section 2's
+-- fit 1 - 0.151 (h/a) + 1.17 (h/a)^2 past a / h = 10; nil below a / h = 0.5. Exact for a
+-- rectangle whatever its aspect: the Stokes force per unit depth depends on a / h alone.
+function R.rect_force(h, a)
+  local r, AR, T = a / h, R.AR, R.FE_LUB
+  local c
+  if r < AR[1] - 1e-9 then return nil end
+  if r > AR[#AR] then
+    c = 1 - 0.151 / r + 1.17 / (r * r)
+  else
+    for k = 1, #AR - 1 do
+      if r <= AR[k + 1] then
+        c = T[k] * (r / AR[k]) ^ (math.log(T[k + 1] / T[k]) / math.log(AR[k + 1] / AR[k]))
+        break
+      end
+    end
+  end
+  return 8 * r ^ 3 * c
+end
+
+-- The rigid-plastic limit load of that rectangle over tau0: 2 a^2 / h + 3 a, section 3's fit
+-- 1 / (2 h^3) + 1.5 / h written for a = 1 / (2 h) (within 3 % of FE's F_tau,y).
+function R.rect_plastic(h, a) return 2 * a * a / h + 3 * a end
+
 -- The gap where a load |F| meets the plastic limit load, Bn (1/(2h^3) + 1.5/h) = |F| (the
 -- fit to F_tau,y within 3 %, barrelling ignored): the stopping-height estimate. By
 -- bisection over (0.05, 2), where the left side falls with h.

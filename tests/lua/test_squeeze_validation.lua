@@ -31,6 +31,25 @@ T.case("thin-film Bingham reference: Newtonian and plastic limits", function()
   T.close(r, 1.615, 0.005, "Bingham film at Bn = 100, h = 0.4: 1.615 x the plastic limit")
 end)
 
+T.case("the rectangle references (sph.references): FE's table by aspect ratio, the plastic fit", function()
+  local R = require "sph.references"
+  -- rect_force interpolates REFERENCES.md section 2's table (FE over lubrication by a / h);
+  -- at a = 1 / (2h) it is the rectangle of the square's area, whose FE forces section 1 gives
+  -- (measured within 0.15 % at h = 1 .. 0.3; bound 0.3 %, section 1's trust in its rectangles)
+  for k, h in ipairs(R.HS) do
+    local e = R.rect_force(h, 1 / (2 * h)) / R.FV[0][k] - 1
+    T.below(math.abs(e), 0.003, ("rect_force at h = %g, a = 1/(2h): FE's rectangle within 0.3 %%"):format(h))
+    -- rect_plastic is section 3's fit 1/(2h^3) + 1.5/h, within 3 % of FE's F_tau,y (measured 3.2 %
+    -- at h = 0.8, the fit's own; bound 3.5 %)
+    local ep = R.rect_plastic(h, 1 / (2 * h)) / R.FTY[k] - 1
+    T.below(math.abs(ep), 0.035, ("rect_plastic at h = %g: FE's F_tau,y within 3.5 %%"):format(h))
+  end
+  for k, r in ipairs(R.AR) do
+    T.close(R.rect_force(1, r) / (8 * r ^ 3), R.FE_LUB[k], 1e-9, ("rect_force at a / h = %g: the table"):format(r))
+  end
+  T.check(R.rect_force(1, 0.4) == nil, "rect_force below a / h = 0.5: nil (no reference)")
+end)
+
 -- runs a case at resolutions res (default: its quick ones); returns the results and the
 -- observed order between the first two
 local function study(c, res)
