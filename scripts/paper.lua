@@ -283,7 +283,7 @@ local function load_figure(num, Re, cases, title, paper_words)
   series[#series + 1] = { x = { 0, t_end }, y = { 0.98, 0.98 }, label = "0.98: well below F_y the square stays above" }
   local file = ("fig%d.png"):format(num)
   assert(sph.plot{ file = figdir .. "/" .. file, series = series, xlabel = "t", ylabel = "h", yrange = { 0, 1.05 },
-                   title = title, width = 800, height = 600 })
+                   title = title, width = 1000, height = 800 }) -- room for the legend's 11 lines
   local te = ("%g"):format(t_end)
   w_md(paper_words, "\n\n![Figure ", num, "](paper/", file, ")\n\n",
     "| case | load / F_y | the paper says | reference h (REFERENCES.md section 3) | sph h(0.5) | sph h(1) | sph h(2) | sph h(", te,
