@@ -487,7 +487,7 @@ local REFWORDS = "F_ref is the plane-strain force of the rectangle of the run's 
   "quasi-steady thin film, first order in Re h): times 1 + (17/70) Re h where the film is thin (a/h >= 2) and Re h <= 1, " ..
   "or where that factor is at most 1.025; elsewhere no reference applies and the creeping force is a lower bound " ..
   "(ratios in parentheses). The tolerance is the t = 0+ force's, 3 % (the thin-film one, a/h >= 5, does not apply: " ..
-  "a/h stays under 3). Settling time: the first time the force is within 10 % of its " ..
+  "in the windows compared, h >= 0.38, a/h stays under 3). Settling time: the first time the force is within 10 % of its " ..
   "minimum over t <= 0.2 (the end of the impulsive start's transient). F / F_ref is the mean over the steps with " ..
   "|h - h0| < 0.02. Columns with two values are dx = " .. table.concat(nlabel, " / ") .. "."
 
