@@ -14,7 +14,7 @@
 --   build/sph scripts/paper.lua [quick=1] [n=20,40] [threads=1] [out=docs] [only=3,4,5,6,7]
 -- quick=1: dx = 1/20 only, the constant-velocity runs stopped at h = 0.4 and the loaded ones
 -- at t = 6 / 4 (about a minute); the full pass: dx = 1/20 and 1/40, so each curve shows its
--- own resolution error (about a quarter of an hour on one thread). threads=1 is the
+-- own resolution error (about 11 minutes on one thread). threads=1 is the
 -- default: these worlds are small (200-800 particles), and on a shared 2-core machine two
 -- OpenMP threads ran a 1/20 squeeze 40 times slower than one. check=1 parses the
 -- parameters, prints the plan and exits (make test).
