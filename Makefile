@@ -98,7 +98,7 @@ validate: all
 # the seed paper's Figures 3-7 (../shared/paper), next to the references of
 # ../shared/REFERENCES.md: docs/paper.md and docs/paper/fig3.png ... fig7.png (the Figure 5
 # grid and its animations). make paper: dx = 1/20 and 1/40 (about 11 minutes on one thread);
-# make paper quick=1: dx = 1/20, shorter constant-velocity runs (about half a minute).
+# make paper quick=1: dx = 1/20, shorter runs (about a minute).
 # n=20,40 and threads=1 pass through (scripts/paper.lua says the rest).
 paper: all
 	$(B)/sph scripts/paper.lua $(if $(quick),quick=$(quick)) $(if $(n),n=$(n)) $(if $(threads),threads=$(threads))
