@@ -143,6 +143,10 @@ struct sph_world {
     sph_stats st;
     int prepared;
     double dt_prev;
+    /* unshifted runs: when fluid particles first came within half a spacing of each other
+     * (cluster_step < 0: not yet), for the failure messages' hint (world.c) */
+    long cluster_step;
+    double cluster_t;
 };
 
 /* world.c */

@@ -93,6 +93,7 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
     }
     w->par = *p;
     w->pin = -1;
+    w->cluster_step = -1;
     w->dx = p->dx;
     /* h = dx by default: the quintic kernel reaches 3 dx, the support every figure of the
      * suite and of docs/validation.md was measured with (docs/method.md, "Kernel and
@@ -332,6 +333,39 @@ static int check_finite(sph_world *w) {
     return 0;
 }
 
+/* Without shifting, a sample that stretches (the squeeze's extension) turns its lattice
+ * into columns whose particles close in on each other, and the run fails later, far from the
+ * cause (docs/limitations.md, "A squeeze needs shifting"). Every 8th step of an unshifted run
+ * looks for a fluid pair closer than dx / 2 (W_ij above W(dx / 2), from the neighbour
+ * build) and keeps when it first happened; a failure's message then says so. */
+static void watch_clustering(sph_world *w) {
+    if (w->par.shifting > 0 || w->cluster_step >= 0 || w->steps % 8) return;
+    double wh = sph_kernel_value(0.5 * w->dx, w->h), wmax = 0.0;
+    int n = w->n;
+#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(max : wmax)
+    for (int i = 0; i < n; i++) {
+        if (w->kind[i] != SPH_FLUID) continue;
+        for (int k = w->nb_start[i]; k < w->nb_mid[i]; k++)
+            if (w->nb_w[k] > wmax) wmax = w->nb_w[k];
+    }
+    if (wmax > wh) {
+        w->cluster_step = w->steps;
+        w->cluster_t = w->t;
+    }
+}
+
+/* Appends the clustering hint to a failure's message (a physical failure: the step's). */
+static int with_hint(sph_world *w) {
+    if (w->par.shifting > 0 || w->cluster_step < 0) return -1;
+    size_t len = strlen(w->err);
+    snprintf(w->err + len, sizeof w->err - len,
+             "; shifting is off and fluid particles came within dx / 2 of each other from step %ld (t = %g) on: "
+             "a sample that stretches, as in a squeeze, needs particle shifting, sph.world{shifting = 20} "
+             "(docs/limitations.md)",
+             w->cluster_step, w->cluster_t);
+    return -1;
+}
+
 static void prepare(sph_world *w) {
     if (w->prepared) return;
     sph_plate_prepare(w);
@@ -397,8 +431,9 @@ int sph_world_step_given(sph_world *w, double dt, int given) {
     if (!isfinite(dt) || dt < w->par.dt_min) {
         char why[512];
         sph_timestep_explain(w, why, sizeof why);
-        return sph_world_fail(w, "time step %g below the minimum %g at step %ld (t = %g): %s", dt,
-                              w->par.dt_min, w->steps, w->t, why);
+        sph_world_fail(w, "time step %g below the minimum %g at step %ld (t = %g): %s", dt, w->par.dt_min, w->steps,
+                       w->t, why);
+        return with_hint(w);
     }
 
     /* plates: the velocity each holds during this step */
@@ -414,6 +449,7 @@ int sph_world_step_given(sph_world *w, double dt, int given) {
     if (sph_neighbours_sort(w) || sph_boundary_ghosts(w)) return -1;
     sph_lap(w, SPH_PHASE_SORT);
     if (sph_neighbours_build(w)) return -1;
+    watch_clustering(w);
     sph_surface_mark(w);
     for (int k = 0; k < w->nplates; k++) memcpy(w->plates[k].rect0, w->plates[k].rect, sizeof w->plates[k].rect);
     sph_lap(w, SPH_PHASE_NEIGHBOURS);
@@ -458,7 +494,7 @@ int sph_world_step_given(sph_world *w, double dt, int given) {
     int bad = check_finite(w) || sph_plate_check_escape(w);
     sph_lap(w, SPH_PHASE_OTHER);
     w->wall_time += w->lap - t0;
-    return bad ? -1 : 0;
+    return bad ? with_hint(w) : 0;
 }
 
 void sph_world_stats(const sph_world *w, sph_stats *s) {
