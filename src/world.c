@@ -360,8 +360,8 @@ static int with_hint(sph_world *w) {
     size_t len = strlen(w->err);
     snprintf(w->err + len, sizeof w->err - len,
              "; shifting is off and fluid particles came within dx / 2 of each other from step %ld (t = %g) on: "
-             "a sample that stretches, as in a squeeze, needs particle shifting, sph.world{shifting = 20} "
-             "(docs/limitations.md)",
+             "a flow that stretches the particle lattice (a squeeze, a cavity) needs particle shifting, "
+             "sph.world{shifting = 20} (docs/limitations.md)",
              w->cluster_step, w->cluster_t);
     return -1;
 }
