@@ -30,16 +30,25 @@ end
 R.AR = { 0.5, 0.78, 1.39, 2, 3.13, 5, 5.56, 10 }
 R.FE_LUB = { 5.25, 2.69, 1.49, 1.216, 1.071, 1.017, 1.011, 0.997 }
 
+-- Section 2's fit to that table for a / h >= 2: 1 - 0.151 (h/a) + 1.17 (h/a)^2.
+function R.film_fit(h, a)
+  local r = h / a
+  return 1 - 0.151 * r + 1.17 * r * r
+end
+
+-- Section 2's quasi-steady inertia factor, first order in Re h: 1 + (17/70) Re h.
+function R.inertia(Re, h) return 1 + 17 / 70 * Re * h end
+
 -- The creeping Newtonian force of a rectangle of half-width a and gap h at V = 1 (whole sample,
--- mu = 1): lubrication times FE's ratio, log-log between the table's aspect ratios, section 2's
--- fit 1 - 0.151 (h/a) + 1.17 (h/a)^2 past a / h = 10; nil below a / h = 0.5. Exact for a
--- rectangle whatever its aspect: the Stokes force per unit depth depends on a / h alone.
+-- mu = 1): lubrication times FE's ratio, log-log between the table's aspect ratios, the fit
+-- past a / h = 10; nil below a / h = 0.5. Exact for a rectangle whatever its aspect: the
+-- Stokes force per unit depth depends on a / h alone.
 function R.rect_force(h, a)
   local r, AR, T = a / h, R.AR, R.FE_LUB
   local c
   if r < AR[1] - 1e-9 then return nil end
   if r > AR[#AR] then
-    c = 1 - 0.151 / r + 1.17 / (r * r)
+    c = R.film_fit(h, a)
   else
     for k = 1, #AR - 1 do
       if r <= AR[k + 1] then
@@ -62,7 +71,7 @@ function R.plastic_height(Bn, F)
   local lo, hi = 0.05, 2
   for _ = 1, 100 do
     local h = 0.5 * (lo + hi)
-    if Bn * (1 / (2 * h ^ 3) + 1.5 / h) > math.abs(F) then lo = h else hi = h end
+    if Bn * R.rect_plastic(h, 1 / (2 * h)) > math.abs(F) then lo = h else hi = h end
   end
   return 0.5 * (lo + hi)
 end

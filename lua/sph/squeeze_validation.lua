@@ -112,8 +112,7 @@ end
 -- (h/a)^2] for a/h >= 2 (whole sample per unit depth, V = 1), times the quasi-steady inertia
 -- factor 1 + (17/70) Re h.
 function M.film_force(h, a, Re)
-  local r = h / a
-  return 8 * (a / h) ^ 3 * (1 - 0.151 * r + 1.17 * r * r) * (1 + 17 / 70 * Re * h)
+  return 8 * (a / h) ^ 3 * refs.film_fit(h, a) * refs.inertia(Re, h)
 end
 
 -- A Newtonian film: the half sample of height 1 and half-width ar (sph.squeeze.build, V = -1,
