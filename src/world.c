@@ -354,7 +354,8 @@ static void watch_clustering(sph_world *w) {
     }
 }
 
-/* Appends the clustering hint to a failure's message (a physical failure: the step's). */
+/* Appends the clustering hint to the message of a step that failed (advance, or a time step
+ * below the minimum); returns -1. */
 static int with_hint(sph_world *w) {
     if (w->par.shifting > 0 || w->cluster_step < 0) return -1;
     size_t len = strlen(w->err);
@@ -400,6 +401,8 @@ int sph_world_step(sph_world *w, double dt) { return sph_world_step_given(w, dt,
  * (run.c), spread to land on an output time, are the engine's own and are not: at rest a
  * regularised Bingham law's viscosity tau0 m (8e5 at Bn = 1000, M = 800) makes the viscous
  * time far shorter than any step the flow needs. */
+static int advance(sph_world *w, double dt, double t0);
+
 int sph_world_step_given(sph_world *w, double dt, int given) {
     double t0 = omp_get_wtime();
     w->lap = t0;
@@ -435,7 +438,13 @@ int sph_world_step_given(sph_world *w, double dt, int given) {
                        w->t, why);
         return with_hint(w);
     }
+    return advance(w, dt, t0) ? with_hint(w) : 0;
+}
 
+/* One step of length dt, the arguments checked (sph_world_step_given); t0: the wall clock
+ * at the step's start. -1 with w->err set on a failure of the physics (a solver, a NaN, a
+ * particle through a plate). */
+static int advance(sph_world *w, double dt, double t0) {
     /* plates: the velocity each holds during this step */
     double vold[SPH_MAX_PLATES];
     for (int k = 0; k < w->nplates; k++) {
@@ -494,7 +503,7 @@ int sph_world_step_given(sph_world *w, double dt, int given) {
     int bad = check_finite(w) || sph_plate_check_escape(w);
     sph_lap(w, SPH_PHASE_OTHER);
     w->wall_time += w->lap - t0;
-    return bad ? with_hint(w) : 0;
+    return bad ? -1 : 0;
 }
 
 void sph_world_stats(const sph_world *w, sph_stats *s) {
