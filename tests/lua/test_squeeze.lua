@@ -49,25 +49,39 @@ end)
 T.case("Newtonian squeeze against lubrication theory", function()
   local dx = 1 / 40
   local w, top = squeeze.build{ dx = dx, Re = 1, Bn = 0, mode = "velocity", world = { threads = o.threads } }
-  local lx, ly = {}, {}
+  local lx, ly, lr = {}, {}, {} -- ln h, ln F and ln F_FE (the film at the contact width) for h <= 0.5
   -- F over the FE film at the current gap and contact half-width, in three windows of h
   local wins = { { lo = 0.5, hi = 0.6 }, { lo = 0.45, hi = 0.5 }, { lo = 0.37, hi = 0.45 } }
   for _, b in ipairs(wins) do b.s, b.n = 0, 0 end
   w:run{ until_t = 0.66, every = 0.005, each = function()
     local h = top.position
-    if h <= 0.5 then lx[#lx + 1], ly[#ly + 1] = math.log(h), math.log(top.force) end
+    if h <= 0.5 then
+      lx[#lx + 1], ly[#ly + 1] = math.log(h), math.log(top.force)
+      lr[#lr + 1] = math.log(sv.film_force(h, sv.contact_half_width(w, h, dx), 1))
+    end
     for _, b in ipairs(wins) do
       if h >= b.lo and h <= b.hi then
         b.s, b.n = b.s + top.force / sv.film_force(h, sv.contact_half_width(w, h, dx), 1), b.n + 1
       end
     end
   end }
-  local n, sx, sy, sxx, sxy = #lx, 0, 0, 0, 0
-  for k = 1, n do sx, sy, sxx, sxy = sx + lx[k], sy + ly[k], sxx + lx[k] ^ 2, sxy + lx[k] * ly[k] end
-  local slope = (n * sxy - sx * sy) / (n * sxx - sx * sx)
+  local function slope_of(ys) -- least-squares slope of ys against ln h
+    local n, sx, sy, sxx, sxy = #lx, 0, 0, 0, 0
+    for k = 1, n do sx, sy, sxx, sxy = sx + lx[k], sy + ys[k], sxx + lx[k] ^ 2, sxy + lx[k] * ys[k] end
+    return (n * sxy - sx * sy) / (n * sxx - sx * sx), sx, sy
+  end
+  local n = #lx
+  local slope, sx, sy = slope_of(ly)
+  local rslope = slope_of(lr)
   local ratio = math.exp((sy - slope * sx) / n + slope * math.log(0.35)) / squeeze.newtonian_force(0.35)
-  print(string.format("# Newtonian: %d samples in h in [%.3f, 0.5], log-log slope %.3f, fitted F(0.35) / lubrication %.4f, %d steps",
-    n, top.position, slope, ratio, w.steps))
+  print(string.format("# Newtonian: %d samples in h in [%.3f, 0.5], log-log slope %.3f (FE's film at the contact width: %.3f), fitted F(0.35) / lubrication %.4f, %d steps",
+    n, top.position, slope, rslope, ratio, w.steps))
+  -- The slope against FE's film at the run's own gap and contact half-width, over the same
+  -- outputs (the FE rectangles' -5.56 is not the barrelled sample's: its contact width grows
+  -- slower than a / h). Measured -6.019 / -5.925 and -6.003 / -5.934 (-O2, one / two threads),
+  -- -6.093 / -5.943 and -5.816 / -5.911 (make check's build): differences 0.07-0.15. Bound 0.5,
+  -- as against the rectangles (the run's own slope moves by up to 0.28 with round-off).
+  T.below(math.abs(slope - rslope), 0.5, "Newtonian squeeze: log-log slope of F against h within 0.5 of FE's film at the contact width")
   -- With the traction-free free surface (p = n . tau . n) the ratio is 0.994 (one thread).
   -- The reference is the FE rectangle at a/h = 1 / (2 h^2) = 4.08, 1.033 x lubrication
   -- (REFERENCES.md section 2's fit); the sample's barrelling and inertia (Re h = 0.35) are
