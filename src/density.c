@@ -31,6 +31,8 @@
  * -grad phi / rho (the pressure's symmetric gradient) and their density follows by
  * continuity. Walls stay; free-surface particles hold phi = 0. */
 static int density_pass(sph_world *w, int pass, double *alpha);
+static int correct(sph_world *w);
+static void motion_share(sph_world *w);
 
 /* Up to DENSITY_PASSES corrections while the error stays above density_tol. One pass
  * removes the smooth part of the error, not all of it: the matrix is the compact Laplacian
@@ -110,6 +112,34 @@ static void descend_if_above(sph_world *w) {
 #define FALLBACK_WAIT 10
 #define FALLBACK_WAIT_MAX 640
 int sph_density_correct(sph_world *w) {
+    int n = w->n;
+#pragma omp parallel for schedule(static) num_threads(w->threads)
+    for (int i = 0; i < n; i++) w->dcx[i] = w->dcy[i] = 0.0;
+    int err = correct(w);
+    motion_share(w);
+    return err;
+}
+
+/* The share of this step's motion that the correction made (sph_stats.correction_share):
+ * the velocity's move from u^{n+1} and the step's acceleration (u^n = u^{n+1} - dt a). */
+static void motion_share(sph_world *w) {
+    int n = w->n;
+    double dt = w->dt_step, c2 = 0.0, m2 = 0.0;
+#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : c2, m2)
+    for (int i = 0; i < n; i++) {
+        if (w->kind[i] != SPH_FLUID) continue;
+        double mx = dt * (w->u[i] - 0.5 * dt * w->ax[i]) + w->dcx[i];
+        double my = dt * (w->v[i] - 0.5 * dt * w->ay[i]) + w->dcy[i];
+        c2 += w->dcx[i] * w->dcx[i] + w->dcy[i] * w->dcy[i];
+        m2 += mx * mx + my * my;
+    }
+    if (!(dt > 0.0)) return;
+    w->st.correction_sq += c2 / dt; /* time-weighted: sum over steps of dt |d / dt|^2 */
+    w->st.motion_sq += m2 / dt;
+    w->st.correction_share = w->st.motion_sq > 0.0 ? sqrt(w->st.correction_sq / w->st.motion_sq) : 0.0;
+}
+
+static int correct(sph_world *w) {
     /* the thin-film scheme: GMRES's directions, then the descent (below) when they
      * leave the error above DENSITY_LIMIT: its eight directions can leave a step above 1 %
      * (next to the symmetry plane, or at a film's front), and the descent brings it to the
@@ -175,6 +205,8 @@ static double displace(sph_world *w, const double *dx, const double *dy, const d
         if (w->kind[i] != SPH_FLUID) continue;
         w->x[i] += alpha * dx[i];
         w->y[i] += alpha * dy[i];
+        w->dcx[i] += alpha * dx[i];
+        w->dcy[i] += alpha * dy[i];
         if (w->surf[i]) continue;
         w->rho[i] += alpha * d[i];
         double e = fabs(w->rho[i] / rho0 - 1.0);

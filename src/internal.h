@@ -73,6 +73,7 @@ struct sph_world {
                                   the source velocity of the pressure system)        */
     double *cx, *cy;           /* positions in cell order: cx[k] = x[cell_items[k]]  */
     double *ru, *rv;           /* scratch: a first density pass's second direction   */
+    double *dcx, *dcy;         /* the density correction's displacement this step    */
     int *kind, *mat, *id;      /* SPH_FLUID or plate index; material; stable id     */
     int *src;                  /* ghosts: the real particle they image; reals: self */
     signed char *gsx, *gsy;    /* ghosts: sign applied to u, v (mirror: -1)         */
@@ -143,6 +144,7 @@ struct sph_world {
     sph_stats st;
     int prepared;
     double dt_prev;
+    double dt_step; /* the step under way (advance) */
     /* unshifted runs: when fluid particles first came within half a spacing of each other
      * (cluster_step < 0: not yet), for the failure messages' hint (world.c) */
     long cluster_step;

@@ -690,6 +690,9 @@ static int w_stats(lua_State *L) {
     SETI("visc_iterations_total", s.visc_iterations_total);
     SETN("max_density_error", s.max_density_error);
     SETN("peak_density_error", s.peak_density_error);
+    SETN("correction_share", s.correction_share);
+    SETN("correction_sq", s.correction_sq);
+    SETN("motion_sq", s.motion_sq);
     SETN("density_alpha", s.density_alpha);
     SETI("density_passes", s.density_passes);
     SETI("density_fallbacks", s.density_fallbacks);

@@ -199,6 +199,12 @@ typedef struct sph_stats {
     long visc_iterations_total;
     double max_density_error; /* max |rho/rho0 - 1| over interior fluid, last step */
     double peak_density_error; /* the largest max_density_error of any step so far */
+    double correction_share;  /* the share of the fluid particles' motion made by the density
+                                 correction over the run so far: sqrt(sum |d_c|^2 / dt over
+                                 sum |d_u + d_c|^2 / dt), over fluid particles and steps
+                                 (each step weighted by its length), d_u the velocity's
+                                 move dt (u^n + u^{n+1}) / 2, d_c the correction's */
+    double correction_sq, motion_sq; /* the two sums behind correction_share */
     double density_alpha;     /* smallest step length of the last step's density passes (1: full) */
     int density_passes;       /* density-correction passes in the last step */
     long density_fallbacks;   /* steps whose passes stalled above the density limit (0.8 %)

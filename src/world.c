@@ -116,7 +116,7 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
     {&w->x,   &w->y,   &w->u,   &w->v,   &w->us,  &w->vs,  &w->ax,       &w->ay,       \
      &w->p,   &w->rho, &w->m,   &w->eta, &w->gd,  &w->divr, &w->visc, &w->lamxx, &w->lamxy, &w->tau, &w->sxx, &w->sxy, &w->xs, &w->ys, &w->lxx,       \
      &w->lxy, &w->lyy, &w->gux, &w->guy, &w->gvx, &w->gvy, &w->phi, &w->ps, &w->psens[0], &w->psens[1], \
-     &w->psens[2], &w->psens[3], &w->dp, &w->vol, &w->sa, &w->sb, &w->cx, &w->cy, &w->ru, &w->rv, \
+     &w->psens[2], &w->psens[3], &w->dp, &w->vol, &w->sa, &w->sb, &w->cx, &w->cy, &w->ru, &w->rv, &w->dcx, &w->dcy, \
      &w->gu.d, &w->gu.d1, &w->gv.d, &w->gv.d1, &w->gp.d, &w->gp.d1}
 #define PARTICLE_INTS(w)                                                                    \
     {&w->kind, &w->mat, &w->id, &w->src, &w->row, &w->perm, &w->iscratch, &w->cell_of,     \
@@ -482,6 +482,7 @@ static int advance(sph_world *w, double dt, double t0) {
     for (int k = 0; k < w->nplates; k++)
         if (w->plates[k].mode == SPH_PLATE_LOAD) w->plates[k].vel = w->plates[k].vel_new;
     sph_lap(w, SPH_PHASE_OTHER); /* plate pressure forces, loaded plates' velocities */
+    w->dt_step = dt;
     sph_pressure_correct(w, dt);
     if (sph_density_correct(w)) return -1;
     sph_lap(w, SPH_PHASE_CORRECTION);

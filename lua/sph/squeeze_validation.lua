@@ -55,6 +55,14 @@ function M.square_world(n, Bn, opts)
   return w, top
 end
 
+-- The share of the fluid particles' motion that the density correction made since the sums
+-- were c0, m0 (stats correction_sq, motion_sq; nil: since the start), as
+-- stats.correction_share: over a window, without the impulsive start's first steps.
+function M.share_since(s, c0, m0)
+  local c, m = s.correction_sq - (c0 or 0), s.motion_sq - (m0 or 0)
+  return m > 0 and math.sqrt(c / m) or 0
+end
+
 -- The square at t = 0+ against FE (REFERENCES.md section 1), M.square_world at dx = 1/n, run to
 -- t = 0.02. Two measures of the force:
 --   ratio: F / F_FE(h) averaged over t in (0.005, 0.02), after the impulsive start's transient,
@@ -72,6 +80,7 @@ end
 -- opts as M.square_world's (on_world: a caller that catches an engine error still has the
 -- world; dt_max none: the engine's step), and t0, t1: ratio's window (0.005, 0.02; the run
 -- ends at t1, ratio0's line is over (t1 / 2, t1)). Returns { ratio, spread, ratio0, steps, cpu,
+-- correction_share (over ratio's window: M.share_since),
 -- unyielded (the share of unyielded particles at the end), at_plates (the share of those
 -- within 0.25 of a plate and at x < 0.45, where FE's wedges are at Bn = 10), particles }.
 function M.square_t0(n, Bn, opts)
@@ -82,9 +91,14 @@ function M.square_t0(n, Bn, opts)
   local s, s2, m = 0, 0, 0
   local L = { n = 0, t = 0, tt = 0, f = 0, tf = 0 } -- the least-squares line of F / F_FE(1) in t
   local t0, t1 = opts.t0 or 0.005, opts.t1 or 0.02
+  local c0, m0 -- the correction's and the motion's sums when the window opens
   while w.t < t1 do
     w:step()
     if w.t > t0 then
+      if not c0 then
+        local s = w:stats()
+        c0, m0 = s.correction_sq, s.motion_sq
+      end
       local r = math.abs(top.force) / (f1 * top.position ^ -k)
       s, s2, m = s + r, s2 + r * r, m + 1
     end
@@ -103,7 +117,8 @@ function M.square_t0(n, Bn, opts)
     end
   end
   local mean = s / m
-  return { ratio = mean, spread = math.sqrt(math.max(0, s2 / m - mean * mean)), ratio0 = (L.f - slope * L.t) / L.n,
+  local st = w:stats()
+  return { correction_share = M.share_since(st, c0, m0), ratio = mean, spread = math.sqrt(math.max(0, s2 / m - mean * mean)), ratio0 = (L.f - slope * L.t) / L.n,
            steps = w.steps, cpu = w:stats().wall_time, unyielded = un / #yl, particles = #yl,
            at_plates = un > 0 and near / un or 0 }
 end
@@ -145,9 +160,14 @@ function M.film(ar, rows, opts)
   if opts.on_world then opts.on_world(w) end
   local A = 2 * w:stats().fluid * dx * dx
   local sf, sr, sq, m, st, stt, stq, sc, ac = 0, 0, 0, 0, 0, 0, 0, 0, 0
+  local c0, m0
   while w.t < t1 do
     w:step()
     if w.t > t0 then
+      if not c0 then
+        local s0 = w:stats()
+        c0, m0 = s0.correction_sq, s0.motion_sq
+      end
       local h, F, t = top.position, top.force, w.t
       local ref = M.film_force(h, A / (2 * h), Re)
       local a = M.contact_half_width(w, h, dx)
@@ -159,7 +179,7 @@ function M.film(ar, rows, opts)
   local s = w:stats()
   local slope = (m * stq - st * sq) / (m * stt - st * st)
   return { F = sf / m, Fref = sr / m, ratio = sq / m, ratio0 = (sq - slope * st) / m, ratio_c = sc / m, a_c = ac,
-           a_area = A / (2 * top.position), samples = m, h = top.position,
+           a_area = A / (2 * top.position), samples = m, h = top.position, correction_share = M.share_since(s, c0, m0),
            steps = w.steps, cpu = s.wall_time, peak = s.peak_density_error, fluid = s.fluid }
 end
 

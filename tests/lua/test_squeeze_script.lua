@@ -47,8 +47,22 @@ T.case("headline squeeze script, the solver options reach the engine", function(
   -- a removed engine option is no parameter of the script
   text, code = run("mode=velocity Re=10 Bn=0.5 M=100 dx=0.05 t_end=0.005 dt_growth=eased")
   T.check(code == 1 and text:find("dt_growth", 1, true) ~= nil, "squeeze.lua with dt_growth=eased exits 1 naming dt_growth", text)
+  text, code = run("mode=velocity Re=10 Bn=0.5 M=100 dx=0.05 t_end=0.005 dt_max=-1")
+  T.check(code == 1 and text:find("dt_max must be a number >= 0", 1, true) ~= nil and not text:find("traceback", 1, true),
+          "squeeze.lua with dt_max=-1 exits 1 naming dt_max, no traceback", text)
   text, code = run("mode=velocity Re=10 Bn=0.5 M=100 dx=0.05 t_end=0.005 visc_tol=1e-7")
   T.check(code == 1 and text:find("visc_tol", 1, true) ~= nil, "squeeze.lua with visc_tol=1e-7 exits 1 naming visc_tol", text)
+end)
+
+-- A stiff yield stress at the engine's step: the density correction moves the particles
+-- more than their velocity does (the square at Bn = 1000, dx = 1/20: 1.3 of the motion by
+-- t = 0.02); the script says so. With dt_max = 2e-6 the share falls (0.29), as the warning
+-- tells the user.
+T.case("headline squeeze script warns when the velocity does not carry the flow", function()
+  local text, code = run("mode=velocity Re=0.05 Bn=1000 M=800 dx=0.05 t_end=0.01 frames=0 plots=0")
+  T.check(code == 0, "squeeze.lua runs the square at Bn = 1000", text)
+  T.check(text:find("warning: the density correction made", 1, true) ~= nil and text:find("dt_max=", 1, true) ~= nil,
+          "it warns that the density correction made the motion, and names dt_max", text)
 end)
 
 -- Early endings say why, with a status that is not 0 (issue 27 D): h_stop before t_end
