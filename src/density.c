@@ -134,7 +134,6 @@ static void motion_share(sph_world *w) {
         m2 += mx * mx + my * my;
     }
     if (!(dt > 0.0)) return;
-    w->st.step_correction_share = m2 > 0.0 ? sqrt(c2 / m2) : 0.0;
     w->st.correction_sq += c2 / dt; /* time-weighted: sum over steps of dt |d / dt|^2 */
     w->st.motion_sq += m2 / dt;
     w->st.correction_share = w->st.motion_sq > 0.0 ? sqrt(w->st.correction_sq / w->st.motion_sq) : 0.0;

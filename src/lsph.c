@@ -693,7 +693,6 @@ static int w_stats(lua_State *L) {
     SETN("correction_share", s.correction_share);
     SETN("correction_sq", s.correction_sq);
     SETN("motion_sq", s.motion_sq);
-    SETN("step_correction_share", s.step_correction_share);
     SETN("density_alpha", s.density_alpha);
     SETI("density_passes", s.density_passes);
     SETI("density_fallbacks", s.density_fallbacks);

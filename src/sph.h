@@ -205,7 +205,6 @@ typedef struct sph_stats {
                                  (each step weighted by its length), d_u the velocity's
                                  move dt (u^n + u^{n+1}) / 2, d_c the correction's */
     double correction_sq, motion_sq; /* the two sums behind correction_share */
-    double step_correction_share; /* the same for the last step alone (the time step follows it) */
     double density_alpha;     /* smallest step length of the last step's density passes (1: full) */
     int density_passes;       /* density-correction passes in the last step */
     long density_fallbacks;   /* steps whose passes stalled above the density limit (0.8 %)

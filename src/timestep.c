@@ -1,31 +1,17 @@
 /* Adaptive time step (PHYSICS.md):
  *   dt = min(C_u h / max|u|, C_eta rho h^2 / max eta (explicit viscosity only),
  *            C_f sqrt(h / max|a|), C_s h^2 / max nu on a traction-free surface (time accuracy), dt_max),
- * and at most 25 % more than the last step; then the density-error control and the
- * split step's accuracy control (SHARE_TOL) below.
+ * and at most 25 % more than the last step; then the density-error control below.
  * Plate speeds and accelerations count, so a plate driven into a fluid at rest sets the
  * first step. */
 #include "internal.h"
 
 #include <math.h>
-#include <stdlib.h>
 #include <stdio.h>
 
 /* C_f and C_eta: the force and explicit-viscosity limits of Morris, Fox & Zhu (1997). */
 #define C_FORCE 0.25
 #define C_VISC 0.125
-/* Time accuracy of the split step: the particles' velocity must carry their motion. The
- * projection leaves a divergence in proportion to dt, largest next to a free surface and in
- * proportion to the pressure there (tau0 for a yield-stress material), and the density
- * correction then moves the particles where their velocity does not take them; the share of
- * a step's motion it makes (stats.step_correction_share, density.c) grows about in
- * proportion to dt. While it exceeds SHARE_TOL, dt shrinks in proportion, down to the
- * density control's floor (below). On the square at Bn = 1000 (dx = 1/20, 1/40) the engine's
- * step left it at 1.9 / 1.2 and the force 0.914 / 0.952 of FE; 0.5 is the largest tolerance
- * that holds the force within 3 % at 1/40 (0.975, 3.3 times the steps; 0.3: 0.988, 6.8
- * times). Where the velocity carries the flow (Newtonian and Bn = 10 squares: 0.01-0.05;
- * the headline squeeze: 0.007) it changes nothing. */
-#define SHARE_TOL 0.5
 /* dt grows at most 25 % a step: the density error a longer step makes shows steps late. */
 #define DT_GROWTH 1.25
 
@@ -82,8 +68,6 @@ double sph_timestep_compute(sph_world *w) {
     } else if (P->density_tol > 0 && w->st.max_density_error > P->density_tol) {
         dt = fmin(dt, fmax(floor, w->dt_prev * fmax(0.8, P->density_tol / w->st.max_density_error)));
     }
-    if (w->dt_prev > 0 && w->st.step_correction_share > SHARE_TOL)
-        dt = fmin(dt, fmax(floor, w->dt_prev * fmax(0.8, SHARE_TOL / w->st.step_correction_share)));
     if (w->dt_prev > 0) dt = fmin(dt, DT_GROWTH * w->dt_prev);
     if (!isfinite(dt)) dt = P->cfl * h; /* nothing moves: a step as if |u| = 1 */
     return dt;
@@ -110,8 +94,5 @@ void sph_timestep_explain(const sph_world *w, char *buf, size_t len) {
                      w->id[iu], w->x[iu], w->y[iu], umax, amax, w->id[ia], w->x[ia], w->y[ia], 100.0 * emax,
                      w->id[ir], w->x[ir], w->y[ir], w->surf[ir] ? ", free surface" : "");
     double g = hypot(w->par.gravity[0], w->par.gravity[1]);
-    if (g > amax && k > 0 && (size_t)k < len) k += snprintf(buf + k, len - (size_t)k, "; gravity %.3g", g);
-    if (w->st.step_correction_share > SHARE_TOL && k > 0 && (size_t)k < len)
-        snprintf(buf + k, len - (size_t)k, "; the density correction made %.3g of the last step's motion",
-                 w->st.step_correction_share);
+    if (g > amax && k > 0 && (size_t)k < len) snprintf(buf + k, len - (size_t)k, "; gravity %.3g", g);
 }
