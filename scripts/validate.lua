@@ -110,8 +110,8 @@ local function section1()
         row.val = c.at0 and r.ratio0 or r.ratio
         row.err = math.abs(row.val - 1)
         xs[#xs + 1], es[#es + 1] = 1 / n, row.err
-        say("square Bn = %g, dx = 1/%d: F / F_FE = %.4f (%s; error %.4f; window mean at the gap %.4f), unyielded %.3f (FE %.2f), %d steps, %.1f s",
-          c.Bn, n, row.val, c.at0 and "t = 0+" or "window mean", row.err, r.ratio, r.unyielded, c.unyielded, r.steps, r.cpu)
+        say("square Bn = %g, dx = 1/%d: F / F_FE = %.4f (%s; error %.4f; window mean at the gap %.4f), unyielded %.3f (FE %.2f), correction share %.4f, %d steps, %.1f s",
+          c.Bn, n, row.val, c.at0 and "t = 0+" or "window mean", row.err, r.ratio, r.unyielded, c.unyielded, r.correction_share, r.steps, r.cpu)
       else
         say("square Bn = %g, dx = 1/%d: failed: %s", c.Bn, n, r.msg)
       end
@@ -130,15 +130,16 @@ local function section1()
     "(Bn = 0, 10; the error and the order are of this). Window mean: the mean over t in (0.005, 0.02) of the force ",
     "over the FE rectangle at the current gap, which the barrelling sample's pinned contact width biases by about ",
     "-1.4 %; at Bn = 1000 the force builds up over the first 0.005 and falls nonlinearly, so the error is the window ",
-    "mean's.\n\n",
-    "| Bn | dx | F(0+) / F_FE | window mean | error | observed order | unyielded fraction (FE) | steps | s |\n|---|---|---|---|---|---|---|---|---|\n")
+    "mean's. Correction share: the share of the particles' motion over the window that the density correction made, ",
+    "not their velocity (stats.correction_share; 0 in the continuum).\n\n",
+    "| Bn | dx | F(0+) / F_FE | window mean | error | observed order | unyielded fraction (FE) | correction share | steps | s |\n|---|---|---|---|---|---|---|---|---|---|\n")
   for _, r in ipairs(rows) do
     if r.ok then
-      w_md(("| %g | 1/%d | %s | %.4f | %.4f | %s | %.3f (%.2f) | %d | %.1f |\n"):format(r.Bn, r.n,
+      w_md(("| %g | 1/%d | %s | %.4f | %.4f | %s | %.3f (%.2f) | %.4f | %d | %.1f |\n"):format(r.Bn, r.n,
         r.at0 and ("%.4f"):format(r.r.ratio0) or "", r.r.ratio, r.err,
-        r.orders or "", r.r.unyielded, r.ref_un, r.r.steps, r.r.cpu))
+        r.orders or "", r.r.unyielded, r.ref_un, r.r.correction_share, r.r.steps, r.r.cpu))
     else
-      w_md(("| %g | 1/%d | failed: %s | | | | | %d | %.1f |\n"):format(r.Bn, r.n, r.r.msg, r.r.steps, r.r.cpu))
+      w_md(("| %g | 1/%d | failed: %s | | | | | | %d | %.1f |\n"):format(r.Bn, r.n, r.r.msg, r.r.steps, r.r.cpu))
     end
   end
   w_md("\n![error against dx](validation_square.png)\n\n")
@@ -197,8 +198,8 @@ local function section2()
     "unreliable in a film, and leaves 5-16 steps in the window). The last case is the README's thin-film scheme ",
     "(`thin_film = true`; the free surface then holds p = 0, which REFERENCES.md puts at ",
     "h^2 / (2 a^2) = 0.5 % of the force at a/h = 10).\n\n",
-    "| case | rows (dx) | F | F_FE | F / F_FE | F / F_FE, contact width | contact half-width at t1 (area's) | error | observed order | F / F_FE at t = 0+ | peak density error | steps | s |\n",
-    "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n")
+    "| case | rows (dx) | F | F_FE | F / F_FE | F / F_FE, contact width | contact half-width at t1 (area's) | error | observed order | F / F_FE at t = 0+ | peak density error | correction share | steps | s |\n",
+    "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n")
   for _, c in ipairs(cases) do
     local list = {}
     for k, rows in ipairs(rowsl) do
@@ -211,14 +212,14 @@ local function section2()
     local xs, es = {}, {}
     for k, r in ipairs(list) do
       if r.ok then
-        say("film %s, %d rows: F = %.4g, F_FE = %.4g, F / F_FE = %.4f (%.4f at the contact width %.4f, the area's %.4f: error %.4f, order %s; %.4f at t = 0+ by the window's line), %d samples, h = %.4f, peak density error %.4f, %d steps, %.1f s",
-          c.label, rowsl[k], r.F, r.Fref, r.ratio, r.ratio_c, r.a_c, r.a_area, r.err, ofmt(o[k]), r.ratio0, r.samples, r.h, r.peak, r.steps, r.cpu)
-        w_md(("| %s | %d (1/%d) | %.5g | %.5g | %.4f | %.4f | %.4f (%.4f) | %.4f | %s | %.4f | %.4f | %d | %.1f |\n"):format(c.label, rowsl[k], rowsl[k],
-          r.F, r.Fref, r.ratio, r.ratio_c, r.a_c, r.a_area, r.err, ofmt(o[k]), r.ratio0, r.peak, r.steps, r.cpu))
+        say("film %s, %d rows: F = %.4g, F_FE = %.4g, F / F_FE = %.4f (%.4f at the contact width %.4f, the area's %.4f: error %.4f, order %s; %.4f at t = 0+ by the window's line), %d samples, h = %.4f, peak density error %.4f, correction share %.4f, %d steps, %.1f s",
+          c.label, rowsl[k], r.F, r.Fref, r.ratio, r.ratio_c, r.a_c, r.a_area, r.err, ofmt(o[k]), r.ratio0, r.samples, r.h, r.peak, r.correction_share, r.steps, r.cpu)
+        w_md(("| %s | %d (1/%d) | %.5g | %.5g | %.4f | %.4f | %.4f (%.4f) | %.4f | %s | %.4f | %.4f | %.4f | %d | %.1f |\n"):format(c.label, rowsl[k], rowsl[k],
+          r.F, r.Fref, r.ratio, r.ratio_c, r.a_c, r.a_area, r.err, ofmt(o[k]), r.ratio0, r.peak, r.correction_share, r.steps, r.cpu))
         xs[#xs + 1], es[#es + 1] = r.dx, r.err
       else
         say("film %s, %d rows: failed: %s", c.label, rowsl[k], r.msg)
-        w_md(("| %s | %d (1/%d) | failed: %s | | | | | | | %d | %.1f |\n"):format(c.label, rowsl[k], rowsl[k], r.msg, r.steps, r.cpu))
+        w_md(("| %s | %d (1/%d) | failed: %s | | | | | | | | %d | %.1f |\n"):format(c.label, rowsl[k], rowsl[k], r.msg, r.steps, r.cpu))
       end
     end
     if #xs > 0 then series[#series + 1] = { x = xs, y = es, label = c.label, style = "both" } end
@@ -253,6 +254,7 @@ local function yield_run(rec, frac, n)
   end }
   local s = w:stats()
   return { h = top.position, V = top:velocity(), force = top.force, yielded = s.yielded / s.fluid, steps = w.steps,
+           share = s.correction_share,
            cpu = s.wall_time, peak = s.peak_density_error, ts = ts, hs = hs }
 end
 
@@ -278,9 +280,11 @@ local function section3()
     "10^-3 or less), so h(1) > 0.98; the error given is 1 - h(1). Under 1.5 F_y it flows and slows down near h*, where ",
     ("Bn F_tau,y(h*) = F with F_tau,y(h) = 1/(2h^3) + 1.5/h: h* = %.4f (%.4f from the table's F_tau,y interpolated "):format(hstar, htab),
     "log-log; the estimate ignores barrelling, and with M = 800 the plate never stops exactly); the error given is ",
-    "|h(1) / h* - 1|. V(1) is the plate velocity at t = 1, yielded the fraction of particles with |tau| > tau0 at t = 1.\n\n",
-    "| load | dx | h(1) | reference | error | observed order | V(1) | yielded | steps | s |\n",
-    "|---|---|---|---|---|---|---|---|---|---|\n")
+    "|h(1) / h* - 1|. V(1) is the plate velocity at t = 1, yielded the fraction of particles with |tau| > tau0 at t = 1, ",
+    "correction share the share of the particles' motion over the run that the density correction made, not their ",
+    "velocity (stats.correction_share).\n\n",
+    "| load | dx | h(1) | reference | error | observed order | V(1) | yielded | correction share | steps | s |\n",
+    "|---|---|---|---|---|---|---|---|---|---|---|\n")
   local series, hseries = {}, {}
   for _, c in ipairs(cases) do
     local list = {}
@@ -294,16 +298,16 @@ local function section3()
     local xs, es = {}, {}
     for k, r in ipairs(list) do
       if r.ok then
-        say("yield %s (F = %.4f), dx = 1/%d: h(1) = %.4f, reference %s, %s = %.4f (order %s), V(1) = %.4g, yielded %.3f, peak density error %.4f, %d steps, %.1f s",
-          c.label, c.frac * YIELD.Fy, nl[k], r.h, c.ref, c.err_name, r.err, ofmt(o[k]), r.V, r.yielded, r.peak, r.steps, r.cpu)
+        say("yield %s (F = %.4f), dx = 1/%d: h(1) = %.4f, reference %s, %s = %.4f (order %s), V(1) = %.4g, yielded %.3f, peak density error %.4f, correction share %.4f, %d steps, %.1f s",
+          c.label, c.frac * YIELD.Fy, nl[k], r.h, c.ref, c.err_name, r.err, ofmt(o[k]), r.V, r.yielded, r.peak, r.share, r.steps, r.cpu)
         local verdict = c.frac < 1 and (r.h > 0.98 and " (creeps only)" or " (flows: not > 0.98)") or ""
-        w_md(("| %s | 1/%d | %.4f%s | %s | %.4f | %s | %.3g | %.3f | %d | %.1f |\n"):format(c.label, nl[k], r.h, verdict, c.ref, r.err,
-          ofmt(o[k]), r.V, r.yielded, r.steps, r.cpu))
+        w_md(("| %s | 1/%d | %.4f%s | %s | %.4f | %s | %.3g | %.3f | %.4f | %d | %.1f |\n"):format(c.label, nl[k], r.h, verdict, c.ref, r.err,
+          ofmt(o[k]), r.V, r.yielded, r.share, r.steps, r.cpu))
         xs[#xs + 1], es[#es + 1] = r.dx, r.err
         hseries[#hseries + 1] = { x = r.ts, y = r.hs, label = ("%s, dx = 1/%d"):format(c.label, nl[k]) }
       else
         say("yield %s, dx = 1/%d: failed: %s", c.label, nl[k], r.msg)
-        w_md(("| %s | 1/%d | failed: %s | %s | | | | | %d | %.1f |\n"):format(c.label, nl[k], r.msg, c.ref, r.steps, r.cpu))
+        w_md(("| %s | 1/%d | failed: %s | %s | | | | | | %d | %.1f |\n"):format(c.label, nl[k], r.msg, c.ref, r.steps, r.cpu))
       end
     end
     if #xs > 0 then series[#series + 1] = { x = xs, y = es, label = ("%s: %s"):format(c.label, c.err_name), style = "both" } end
