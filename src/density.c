@@ -32,7 +32,7 @@
  * continuity. Walls stay; free-surface particles hold phi = 0. */
 static int density_pass(sph_world *w, int pass, double *alpha);
 static int correct(sph_world *w);
-static void motion_share(sph_world *w);
+static void motion_share(sph_world *w, double dt);
 
 /* Up to DENSITY_PASSES corrections while the error stays above density_tol. One pass
  * removes the smooth part of the error, not all of it: the matrix is the compact Laplacian
@@ -111,32 +111,32 @@ static void descend_if_above(sph_world *w) {
 #define FALLBACK_USELESS 0.95
 #define FALLBACK_WAIT 10
 #define FALLBACK_WAIT_MAX 640
-int sph_density_correct(sph_world *w) {
-    int n = w->n;
-#pragma omp parallel for schedule(static) num_threads(w->threads)
-    for (int i = 0; i < n; i++) w->dcx[i] = w->dcy[i] = 0.0;
+int sph_density_correct(sph_world *w, double dt) {
     int err = correct(w);
-    motion_share(w);
+    motion_share(w, dt);
     return err;
 }
 
-/* The share of this step's motion that the correction made (sph_stats.correction_share):
- * the velocity's move from u^{n+1} and the step's acceleration (u^n = u^{n+1} - dt a). */
-static void motion_share(sph_world *w) {
+/* The sums behind sph_stats.correction_share for this step of length dt: the correction's
+ * displacement (dcx, dcy, accumulated by displace; read and cleared here, so they are zero
+ * between steps) against the whole move, the velocity's part from u^{n+1} and the step's
+ * acceleration (u^n = u^{n+1} - dt a). */
+static void motion_share(sph_world *w, double dt) {
     int n = w->n;
-    double dt = w->dt_step, c2 = 0.0, m2 = 0.0;
+    double c2 = 0.0, m2 = 0.0;
 #pragma omp parallel for schedule(static) num_threads(w->threads) reduction(+ : c2, m2)
     for (int i = 0; i < n; i++) {
+        double cx = w->dcx[i], cy = w->dcy[i];
+        w->dcx[i] = w->dcy[i] = 0.0;
         if (w->kind[i] != SPH_FLUID) continue;
-        double mx = dt * (w->u[i] - 0.5 * dt * w->ax[i]) + w->dcx[i];
-        double my = dt * (w->v[i] - 0.5 * dt * w->ay[i]) + w->dcy[i];
-        c2 += w->dcx[i] * w->dcx[i] + w->dcy[i] * w->dcy[i];
+        double mx = dt * (w->u[i] - 0.5 * dt * w->ax[i]) + cx;
+        double my = dt * (w->v[i] - 0.5 * dt * w->ay[i]) + cy;
+        c2 += cx * cx + cy * cy;
         m2 += mx * mx + my * my;
     }
     if (!(dt > 0.0)) return;
     w->st.correction_sq += c2 / dt; /* time-weighted: sum over steps of dt |d / dt|^2 */
     w->st.motion_sq += m2 / dt;
-    w->st.correction_share = w->st.motion_sq > 0.0 ? sqrt(w->st.correction_sq / w->st.motion_sq) : 0.0;
 }
 
 static int correct(sph_world *w) {

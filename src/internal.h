@@ -144,7 +144,6 @@ struct sph_world {
     sph_stats st;
     int prepared;
     double dt_prev;
-    double dt_step; /* the step under way (advance) */
     /* unshifted runs: when fluid particles first came within half a spacing of each other
      * (cluster_step < 0: not yet), for the failure messages' hint (world.c) */
     long cluster_step;
@@ -244,7 +243,7 @@ void sph_pressure_correct(sph_world *w, double dt);
 /* world.c: sph_world_step, with whether dt is the caller's (held to the viscous-time span) */
 int sph_world_step_given(sph_world *w, double dt, int given);
 void sph_pressure_predictor(sph_world *w, double *ax, double *ay);
-int sph_density_correct(sph_world *w);
+int sph_density_correct(sph_world *w, double dt);
 /* The pressure system's pieces the density correction (density.c) shares (pressure.c) */
 void sph_pressure_neg_grad_prepare(sph_world *w, const double *f, double *fr);
 /* p from a solution per row; free-surface fluid particles take surface[i] (NULL: 0) */

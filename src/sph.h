@@ -203,7 +203,8 @@ typedef struct sph_stats {
                                  correction over the run so far: sqrt(sum |d_c|^2 / dt over
                                  sum |d_u + d_c|^2 / dt), over fluid particles and steps
                                  (each step weighted by its length), d_u the velocity's
-                                 move dt (u^n + u^{n+1}) / 2, d_c the correction's */
+                                 move dt (u^n + u^{n+1}) / 2, d_c the correction's
+                                 (sph_world_stats derives it from the two sums below) */
     double correction_sq, motion_sq; /* the two sums behind correction_share */
     double density_alpha;     /* smallest step length of the last step's density passes (1: full) */
     int density_passes;       /* density-correction passes in the last step */

@@ -482,9 +482,8 @@ static int advance(sph_world *w, double dt, double t0) {
     for (int k = 0; k < w->nplates; k++)
         if (w->plates[k].mode == SPH_PLATE_LOAD) w->plates[k].vel = w->plates[k].vel_new;
     sph_lap(w, SPH_PHASE_OTHER); /* plate pressure forces, loaded plates' velocities */
-    w->dt_step = dt;
     sph_pressure_correct(w, dt);
-    if (sph_density_correct(w)) return -1;
+    if (sph_density_correct(w, dt)) return -1;
     sph_lap(w, SPH_PHASE_CORRECTION);
     w->st.pressure_setup_time += w->solver.setup_time - su1;
     w->st.pressure_solve_time += w->solver.solve_time - so1;
@@ -509,6 +508,7 @@ static int advance(sph_world *w, double dt, double t0) {
 
 void sph_world_stats(const sph_world *w, sph_stats *s) {
     *s = w->st;
+    s->correction_share = w->st.motion_sq > 0.0 ? sqrt(w->st.correction_sq / w->st.motion_sq) : 0.0;
     s->fluid = w->nfluid;
     s->particles = w->n;
     s->wall = w->n - w->nfluid;

@@ -62,6 +62,11 @@ function M.share_since(s, c0, m0)
   local c, m = s.correction_sq - (c0 or 0), s.motion_sq - (m0 or 0)
   return m > 0 and math.sqrt(c / m) or 0
 end
+-- The two sums behind stats.correction_share now (a window's start for M.share_since).
+local function correction_sums(w)
+  local s = w:stats()
+  return s.correction_sq, s.motion_sq
+end
 
 -- The square at t = 0+ against FE (REFERENCES.md section 1), M.square_world at dx = 1/n, run to
 -- t = 0.02. Two measures of the force:
@@ -95,10 +100,7 @@ function M.square_t0(n, Bn, opts)
   while w.t < t1 do
     w:step()
     if w.t > t0 then
-      if not c0 then
-        local s = w:stats()
-        c0, m0 = s.correction_sq, s.motion_sq
-      end
+      if not c0 then c0, m0 = correction_sums(w) end
       local r = math.abs(top.force) / (f1 * top.position ^ -k)
       s, s2, m = s + r, s2 + r * r, m + 1
     end
@@ -164,10 +166,7 @@ function M.film(ar, rows, opts)
   while w.t < t1 do
     w:step()
     if w.t > t0 then
-      if not c0 then
-        local s0 = w:stats()
-        c0, m0 = s0.correction_sq, s0.motion_sq
-      end
+      if not c0 then c0, m0 = correction_sums(w) end
       local h, F, t = top.position, top.force, w.t
       local ref = M.film_force(h, A / (2 * h), Re)
       local a = M.contact_half_width(w, h, dx)
