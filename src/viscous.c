@@ -77,16 +77,10 @@ static inline double surface_stretching(const sph_world *w, int i, const double 
  * (a stress-controlled mode converges at the rate r / (tangent + r) per step, the direction
  * of the stress at secant / (secant + r)); at most the secant at the present rate (a rate
  * that jumped, as at an impulsive start, would leave S = lam - 2 r gamma large and of the
- * wrong sign). Within a support of a free surface, r is also at most ALM_CAP rho h^2 / dt:
- * the part of 2 r gamma above mu is explicit in S, and over the truncated support its
- * divergence (nested kernel sums) is stiffer than the implicit Morris sum for some
- * particle-scale modes (at Bn = 1000, dx = 1/20, a zig-zag of the velocity grows for
- * r dt / (rho h^2) above about 0.5; capped on the surface row alone it grows too). Inside,
- * no cap: there it only slowed the multiplier, whose direction in a near-rigid zone follows
- * the rate over secant / r steps (at M = 800, Bn = 10, r = 2 mu, about 4,000 steps, 0.6 of
- * time at dx = 1/40), so a plug deformed as a fluid of viscosity r: the square under
- * 1.5 F_y came to h(1) = 0.692 at dx = 1/40 and, converging in dt with the cap, 0.711;
- * without it inside 0.714 at the engine's step (h* = 0.773). */
+ * wrong sign) and at most the plastic viscosity plus ALM_CAP rho h^2 / dt: the part of
+ * 2 r gamma above mu is explicit in S, and its divergence (nested kernel sums) is stiffer
+ * than the implicit Morris sum for some particle-scale modes (at Bn = 1000, dx = 1/20, a
+ * zig-zag of the velocity grows for r dt / (rho h^2) above about 0.5, not below). */
 #define ALM_CAP 0.5
 
 static void plastic_update(sph_world *w, int i, double exx, double exy, double dt) {
@@ -94,10 +88,7 @@ static void plastic_update(sph_world *w, int i, double exx, double exy, double d
     double gp = w->gd[i], sl, tp = sph_rheology_stress(mt, gp, &sl);
     double sec = gp > 0 ? tp / gp : sph_rheology_eta(mt, 0.0);
     double gnow = 2.0 * hypot(exx, exy), mu = mt->model == SPH_BINGHAM ? mt->mu : 0.0;
-    int nearsurf = w->surf[i];
-    for (int k = w->nb_start[i]; k < w->nb_mid[i] && !nearsurf; k++) nearsurf = w->surf[w->src[w->nb_j[k]]];
-    double cap = nearsurf ? ALM_CAP * w->rho[i] * w->h * w->h / dt : INFINITY;
-    double r = fmax(fmin(fmin(sqrt(sl * sec), sph_rheology_eta(mt, gnow)), cap), mu);
+    double r = fmax(fmin(fmin(sqrt(sl * sec), sph_rheology_eta(mt, gnow)), ALM_CAP * w->rho[i] * w->h * w->h / dt), mu);
     double qxx = w->lamxx[i] + 2.0 * r * exx, qxy = w->lamxy[i] + 2.0 * r * exy, q = hypot(qxx, qxy);
     double g = sph_rheology_prox(mt, q, r, gp), tg = sph_rheology_stress(mt, g, 0);
     double nx = q > 0 ? qxx / q : 0.0, ny = q > 0 ? qxy / q : 0.0;
