@@ -23,6 +23,14 @@ local flows = require "sph.flows"
 local squeeze_validation = require "sph.squeeze_validation"
 local opt = ... or {}
 local out = opt.out or "docs"
+-- the folder made and written to before the runs, not after them: a missing or read-only
+-- folder stops the script at once rather than at its end
+assert(sph.mkdir(out))
+do
+  local probe = assert(io.open(out .. "/validation.md.tmp", "w"))
+  probe:close()
+  os.remove(out .. "/validation.md.tmp")
+end
 local threads = opt.threads or 1
 
 local function numbers(s)
@@ -63,6 +71,16 @@ local function order(e1, e2, dx1, dx2)
 end
 local function ofmt(p) return p and ("%.2f"):format(p) or "" end
 
+-- A failed run's table row under the header line head: cells[k] in column k (a sparse list:
+-- the case, dx, "failed: ...", any reference), blanks elsewhere, its steps and seconds in the
+-- last two columns, so that a column added to head needs no change here.
+local function failed_row(head, cells, steps, cpu)
+  local ncols, out = select(2, head:gsub("|", "")) - 1, {}
+  for k = 1, ncols - 2 do out[k] = cells[k] or "" end
+  out[ncols - 1], out[ncols] = ("%d"):format(steps), ("%.1f"):format(cpu)
+  return "| " .. table.concat(out, " | ") .. " |\n"
+end
+
 -- orders[k] between resolution k - 1 and k of a list of { dx, err } (err nil: failed)
 local function orders_of(list)
   local o = {}
@@ -99,6 +117,7 @@ local function square(rec, c, n)
   return squeeze_validation.square_t0(n, c.Bn, { threads = threads, on_world = function(w) rec.w = w end })
 end
 
+local HEAD1 = "| Bn | dx | F(0+) / F_FE | window mean | error | observed order | unyielded fraction (FE) | correction share | steps | s |\n"
 local function section1()
   local rows, series = {}, {}
   for _, c in ipairs(REF) do
@@ -132,14 +151,14 @@ local function section1()
     "-1.4 %; at Bn = 1000 the force builds up over the first 0.005 and falls nonlinearly, so the error is the window ",
     "mean's. Correction share: the share of the particles' motion over the window that the density correction made, ",
     "not their velocity (stats.correction_share; 0 in the continuum).\n\n",
-    "| Bn | dx | F(0+) / F_FE | window mean | error | observed order | unyielded fraction (FE) | correction share | steps | s |\n|---|---|---|---|---|---|---|---|---|---|\n")
+    HEAD1, "|---|---|---|---|---|---|---|---|---|---|\n")
   for _, r in ipairs(rows) do
     if r.ok then
       w_md(("| %g | 1/%d | %s | %.4f | %.4f | %s | %.3f (%.2f) | %.4f | %d | %.1f |\n"):format(r.Bn, r.n,
         r.at0 and ("%.4f"):format(r.r.ratio0) or "", r.r.ratio, r.err,
         r.orders or "", r.r.unyielded, r.ref_un, r.r.correction_share, r.r.steps, r.r.cpu))
     else
-      w_md(("| %g | 1/%d | failed: %s | | | | | | %d | %.1f |\n"):format(r.Bn, r.n, r.r.msg, r.r.steps, r.r.cpu))
+      w_md(failed_row(HEAD1, { ("%g"):format(r.Bn), ("1/%d"):format(r.n), "failed: " .. r.r.msg }, r.r.steps, r.r.cpu))
     end
   end
   w_md("\n![error against dx](validation_square.png)\n\n")
@@ -167,6 +186,8 @@ local function film(rec, ar, rows, world)
   return squeeze_validation.film(ar, rows, { Re = FILM.Re, t0 = FILM.t0, t1 = FILM.t1, world = wo, on_world = function(w) rec.w = w end })
 end
 
+local HEAD2 = "| case | rows (dx) | F | F_FE | F / F_FE | F / F_FE, contact width | contact half-width at t1 (area's) | error | " ..
+  "observed order | F / F_FE at t = 0+ | peak density error | correction share | steps | s |\n"
 local function section2()
   local rowsl, ars = numbers(opt.rows or "16,32,64"), numbers(opt.ar or "2,5,10")
   local cases = {}
@@ -198,8 +219,7 @@ local function section2()
     "unreliable in a film, and leaves 5-16 steps in the window). The last case is the README's thin-film scheme ",
     "(`thin_film = true`; the free surface then holds p = 0, which REFERENCES.md puts at ",
     "h^2 / (2 a^2) = 0.5 % of the force at a/h = 10).\n\n",
-    "| case | rows (dx) | F | F_FE | F / F_FE | F / F_FE, contact width | contact half-width at t1 (area's) | error | observed order | F / F_FE at t = 0+ | peak density error | correction share | steps | s |\n",
-    "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n")
+    HEAD2, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n")
   for _, c in ipairs(cases) do
     local list = {}
     for k, rows in ipairs(rowsl) do
@@ -219,7 +239,7 @@ local function section2()
         xs[#xs + 1], es[#es + 1] = r.dx, r.err
       else
         say("film %s, %d rows: failed: %s", c.label, rowsl[k], r.msg)
-        w_md(("| %s | %d (1/%d) | failed: %s | | | | | | | | %d | %.1f |\n"):format(c.label, rowsl[k], rowsl[k], r.msg, r.steps, r.cpu))
+        w_md(failed_row(HEAD2, { c.label, ("%d (1/%d)"):format(rowsl[k], rowsl[k]), "failed: " .. r.msg }, r.steps, r.cpu))
       end
     end
     if #xs > 0 then series[#series + 1] = { x = xs, y = es, label = c.label, style = "both" } end
@@ -254,10 +274,11 @@ local function yield_run(rec, frac, n)
   end }
   local s = w:stats()
   return { h = top.position, V = top:velocity(), force = top.force, yielded = s.yielded / s.fluid, steps = w.steps,
-           share = s.correction_share,
+           correction_share = s.correction_share,
            cpu = s.wall_time, peak = s.peak_density_error, ts = ts, hs = hs }
 end
 
+local HEAD3 = "| load | dx | h(1) | reference | error | observed order | V(1) | yielded | correction share | steps | s |\n"
 local function section3()
   local nl = numbers(opt.yield_n or "20,40,80")
   local hstar = yield_height(1.5 * YIELD.Fy)
@@ -283,8 +304,7 @@ local function section3()
     "|h(1) / h* - 1|. V(1) is the plate velocity at t = 1, yielded the fraction of particles with |tau| > tau0 at t = 1, ",
     "correction share the share of the particles' motion over the run that the density correction made, not their ",
     "velocity (stats.correction_share).\n\n",
-    "| load | dx | h(1) | reference | error | observed order | V(1) | yielded | correction share | steps | s |\n",
-    "|---|---|---|---|---|---|---|---|---|---|---|\n")
+    HEAD3, "|---|---|---|---|---|---|---|---|---|---|---|\n")
   local series, hseries = {}, {}
   for _, c in ipairs(cases) do
     local list = {}
@@ -299,15 +319,15 @@ local function section3()
     for k, r in ipairs(list) do
       if r.ok then
         say("yield %s (F = %.4f), dx = 1/%d: h(1) = %.4f, reference %s, %s = %.4f (order %s), V(1) = %.4g, yielded %.3f, peak density error %.4f, correction share %.4f, %d steps, %.1f s",
-          c.label, c.frac * YIELD.Fy, nl[k], r.h, c.ref, c.err_name, r.err, ofmt(o[k]), r.V, r.yielded, r.peak, r.share, r.steps, r.cpu)
+          c.label, c.frac * YIELD.Fy, nl[k], r.h, c.ref, c.err_name, r.err, ofmt(o[k]), r.V, r.yielded, r.peak, r.correction_share, r.steps, r.cpu)
         local verdict = c.frac < 1 and (r.h > 0.98 and " (creeps only)" or " (flows: not > 0.98)") or ""
         w_md(("| %s | 1/%d | %.4f%s | %s | %.4f | %s | %.3g | %.3f | %.4f | %d | %.1f |\n"):format(c.label, nl[k], r.h, verdict, c.ref, r.err,
-          ofmt(o[k]), r.V, r.yielded, r.share, r.steps, r.cpu))
+          ofmt(o[k]), r.V, r.yielded, r.correction_share, r.steps, r.cpu))
         xs[#xs + 1], es[#es + 1] = r.dx, r.err
         hseries[#hseries + 1] = { x = r.ts, y = r.hs, label = ("%s, dx = 1/%d"):format(c.label, nl[k]) }
       else
         say("yield %s, dx = 1/%d: failed: %s", c.label, nl[k], r.msg)
-        w_md(("| %s | 1/%d | failed: %s | %s | | | | | | %d | %.1f |\n"):format(c.label, nl[k], r.msg, c.ref, r.steps, r.cpu))
+        w_md(failed_row(HEAD3, { c.label, ("1/%d"):format(nl[k]), "failed: " .. r.msg, c.ref }, r.steps, r.cpu))
       end
     end
     if #xs > 0 then series[#series + 1] = { x = xs, y = es, label = ("%s: %s"):format(c.label, c.err_name), style = "both" } end
@@ -478,8 +498,8 @@ local function startup_section(name, run, ref, qa, qb, la, lb, nl, series)
     end
     w_md(line, " |\n")
   end
-  w_md("\n| dx | max error of ", la, " | observed order | max error of ", lb, " | observed order | steps | s |\n",
-    "|---|---|---|---|---|---|---|\n")
+  local head = ("| dx | max error of %s | observed order | max error of %s | observed order | steps | s |\n"):format(la, lb)
+  w_md("\n", head, "|---|---|---|---|---|---|---|\n")
   local xs, ea, eb = {}, {}, {}
   for k, r in ipairs(list) do
     if r.ok then
@@ -492,7 +512,7 @@ local function startup_section(name, run, ref, qa, qb, la, lb, nl, series)
       xs[#xs + 1], ea[#ea + 1], eb[#eb + 1] = r.dx, r.ea, r.eb
     else
       say("%s, dx = 1/%d: failed: %s", name, nl[k], r.msg)
-      w_md(("| 1/%d | failed: %s | | | | %d | %.1f |\n"):format(nl[k], r.msg, r.steps, r.cpu))
+      w_md(failed_row(head, { ("1/%d"):format(nl[k]), "failed: " .. r.msg }, r.steps, r.cpu))
     end
   end
   w_md("\n")
@@ -502,6 +522,8 @@ local function startup_section(name, run, ref, qa, qb, la, lb, nl, series)
   end
 end
 
+local HEAD_CAVITY = "| Bn | dx | y_c | reference | error | observed order | change since 0.1 Re | unyielded | reference | " ..
+  "error | observed order | steps | s |\n"
 local function section4()
   local nl = numbers(opt.flow_n or "20,40,80")
   local cl = numbers(opt.cavity_n or "20,40,80")
@@ -529,8 +551,7 @@ local function section4()
     "dt alone; Bn = 5: 0.8748 / 0.8728 / 0.8526 at 0.125 / 0.25 / 0.5). y_c is the zero of u on x = 0.5 below the lid ",
     "(linear MLS fit of u over 3 dx); unyielded: the share of particles with |tau| <= tau0. References: FE, M = 800 ",
     "(REFERENCES.md section 4).\n\n",
-    "| Bn | dx | y_c | reference | error | observed order | change since 0.1 Re | unyielded | reference | error | observed order | steps | s |\n",
-    "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n")
+    HEAD_CAVITY, "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n")
   for _, c in ipairs(CAV.cases) do
     local list = {}
     for k, n in ipairs(cl) do
@@ -554,7 +575,8 @@ local function section4()
         xs[#xs + 1], ey[#ey + 1], eu[#eu + 1] = r.dx, r.ey, r.eu
       else
         say("cavity Bn = %g, dx = 1/%d: failed: %s", c.Bn, cl[k], r.msg)
-        w_md(("| %g | 1/%d | failed: %s | %.4f | | | | | %.2f | | | %d | %.1f |\n"):format(c.Bn, cl[k], r.msg, c.yc, c.un, r.steps, r.cpu))
+        w_md(failed_row(HEAD_CAVITY, { ("%g"):format(c.Bn), ("1/%d"):format(cl[k]), "failed: " .. r.msg, ("%.4f"):format(c.yc),
+                                       [9] = ("%.2f"):format(c.un) }, r.steps, r.cpu))
       end
     end
     if #xs > 0 then
