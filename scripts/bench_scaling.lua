@@ -185,7 +185,7 @@ print("p-sol/st: pressure-type solves a step (the pressure, then one per density
 print("that moved along the difference form's direction; rhoerr: the largest max density")
 print("error after a timed step (over density_tol, 0.5 %, a step takes a second density pass)")
 
-os.execute("mkdir -p '" .. outdir .. "'")
+assert(sph.mkdir(outdir))
 local csv = assert(io.open(outdir .. "/scaling.csv", "w"))
 local cols = "dx,particles,threads,runs,steps,dt_over_dx,max_density_error,pressure_solves_per_step,density_switches_per_step,ns_per_particle_step,spread,pressure_iterations_per_step," ..
   "viscous_iterations_per_step,neighbours_mean,step_s"

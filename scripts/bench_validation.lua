@@ -145,7 +145,7 @@ say("errors:")
 for _, c in ipairs(cases) do say(string.format("  %s: %s (%s)", c.name, c.error_name, c.module)) end
 
 -- CSV and plot
-os.execute("mkdir -p '" .. outdir:gsub("'", "'\\''") .. "'")
+assert(sph.mkdir(outdir))
 local csv = assert(io.open(outdir .. "/validation.csv", "w"))
 csv:write("module,case,dx,particles,steps,wall_s,ns_per_particle_step,p_iter,v_iter,error,order,runs,threads\n")
 local series = {}

@@ -27,7 +27,7 @@ end
 if times[#times] == nil or times[#times] < t_end - 1e-12 then times[#times + 1] = t_end end
 if nanim < 2 then error("nanim: at least 2 frames expected") end
 
-os.execute("mkdir -p '" .. out .. "/anim'")
+assert(sph.mkdir(out .. "/anim"))
 print(string.format("figures: constant load F=%g, Re=%g, Bn=2 and 5, M=%g, dx=%g, t_end=%g -> %s/",
   F, Re, M, dx, t_end, out))
 

@@ -25,7 +25,7 @@ for k in tostring(o.runs or "defaults,thin"):gmatch("[%a_]+") do
   end
   runs[#runs + 1] = k
 end
-os.execute("mkdir -p '" .. outdir .. "'")
+assert(sph.mkdir(outdir))
 local csv = assert(io.open(outdir .. "/thin_film.csv", "w"))
 csv:write("run,h,a_over_h,F_h6,max_density_error\n")
 local series = {}
