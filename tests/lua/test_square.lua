@@ -43,29 +43,35 @@ T.case("Bingham square at t = 0+ against FE (Bn = 10, 1000), converging", functi
   -- Measured (one thread) at dx = 1/20, 1/40 (1/80 in make validate):
   --   Bn = 10, F(0+) / F_FE: 0.9776 / 0.9961, errors 0.022 / 0.004, order 2.5.
   --   Bn = 1000, the window mean against the gap's FE (its force builds up over the first
-  --   0.005 and falls nonlinearly, so it has no t = 0+ line): 0.9137 / 0.9522, order 0.85.
+  --   0.005 and falls nonlinearly, so it has no t = 0+ line): 0.9669 / 0.9860, order 1.24,
+  --   in 10,455 / 22,220 steps (the time step on the plastic stress's lag, timestep.c;
+  --   0.914 / 0.952 without it).
   -- Bounds: Bn = 10 0.05 at 1/20, REFERENCES.md's 3 % at 1/40, an order of at least 1;
-  -- Bn = 1000 0.11 / 0.06 (1.25 x the measured; not yet 3 %: docs/limitations.md; 0.9839 at
-  -- 1/80 in make validate), an order of at least 0.8; the
+  -- Bn = 1000 0.05 at 1/20 (1.5 x the measured), 3 % at 1/40, an order of at least 1; the
   -- spread under 0.02 / 0.05.
   -- The unyielded share at t = 0.02 (the kernel-averaged multiplier under tau0): FE 0.11-0.13
   -- at Bn = 10 (not mesh-converged, REFERENCES.md), 0.45-0.55 at Bn = 1000; measured 0.110 /
-  -- 0.104 and 0.545 / 0.497. Bounds: within 0.04 of 0.12 and 0.08 of 0.50; at Bn = 10 at least
+  -- 0.104 and 0.400 / 0.449. Bounds: within 0.04 of 0.12 and 0.08 of 0.50; at Bn = 10 at least
   -- 0.9 of the unyielded particles within 0.25 of a plate and at x < 0.45 (FE's wedges: 0.18
-  -- deep at x = 0, reaching x = 0.405).
+  -- deep at x = 0, reaching x = 0.405). At Bn = 1000 the share is bounded at 1/40 only, and
+  -- asked to come closer to FE's from 1/20 to 1/40: at 1/20 it converges in dt to a share
+  -- below FE's (0.545 / 0.440 / 0.410 at the step without the lag's limit / dt = 4e-6 / 2e-6,
+  -- 0.385 at 1e-6), the 0.545 it used to show there being the multiplier's lag behind its
+  -- all-unyielded start.
   -- The share of the motion the density correction made (see the Newtonian case): Bn = 10
   -- 0.047 / 0.016 (order 1.5), bounds 0.1 / 0.035 and an order of at least 1; Bn = 1000
-  -- 1.92 / 1.22, printed only: there the velocity does not carry the flow
-  -- (docs/limitations.md; issue 26 open).
+  -- 0.236 / 0.161 (1.92 / 1.22 without the lag's limit), bound 0.25 at 1/40 (1.5 x the
+  -- measured; not yet converging at first order: docs/limitations.md).
   for _, c in ipairs{ { Bn = 10, bounds = { 0.05, 0.03 }, order = 1, sd = 0.02, at0 = true, un = 0.12, un_bound = 0.04, at_plates = 0.9,
-                        sbounds = { 0.1, 0.035 } },
-                      { Bn = 1000, bounds = { 0.11, 0.06 }, order = 0.8, sd = 0.05, un = 0.50, un_bound = 0.08 } } do
-    local errs, shares = {}, {}
+                        sbounds = { 0.1, 0.035 }, sorder = 1 },
+                      { Bn = 1000, bounds = { 0.05, 0.03 }, order = 1, sd = 0.05, un = 0.50, un_bound = 0.08, un_from = 2,
+                        sbounds = { nil, 0.25 } } } do
+    local errs, shares, uns = {}, {}, {}
     for k, n in ipairs{ 20, 40 } do
       local r = square_t0(n, c.Bn)
       shares[k] = r.correction_share
       print(string.format("# square Bn = %g, dx = 1/%d: the density correction made %.4f of the motion", c.Bn, n, shares[k]))
-      if c.sbounds then
+      if c.sbounds[k] then
         T.below(shares[k], c.sbounds[k], string.format("square Bn = %g, dx = 1/%d: the velocity carries the flow (correction share under %g)",
                                                        c.Bn, n, c.sbounds[k]))
       end
@@ -77,17 +83,23 @@ T.case("Bingham square at t = 0+ against FE (Bn = 10, 1000), converging", functi
       T.below(r.spread, c.sd, string.format("square Bn = %g, dx = 1/%d: the force's spread over the window under %g", c.Bn, n, c.sd))
       print(string.format("# square Bn = %g, dx = 1/%d: unyielded share %.3f (FE %.2f), %.3f of it at the plate centres",
                           c.Bn, n, r.unyielded, c.un, r.at_plates))
-      T.below(math.abs(r.unyielded - c.un), c.un_bound, string.format("square Bn = %g, dx = 1/%d: the unyielded share within %g of FE's %g",
-                                                                      c.Bn, n, c.un_bound, c.un))
+      uns[k] = math.abs(r.unyielded - c.un)
+      if k >= (c.un_from or 1) then
+        T.below(uns[k], c.un_bound, string.format("square Bn = %g, dx = 1/%d: the unyielded share within %g of FE's %g",
+                                                  c.Bn, n, c.un_bound, c.un))
+      end
       if c.at_plates then
         T.check(r.at_plates >= c.at_plates, string.format("square Bn = %g, dx = 1/%d: at least %g of the unyielded particles at the plate centres",
                                                           c.Bn, n, c.at_plates), string.format("%.3f", r.at_plates))
       end
     end
-    if c.sbounds then
-      local sorder = math.log(shares[1] / shares[2]) / math.log(2)
-      print(string.format("# square Bn = %g: the correction share's observed order %.2f", c.Bn, sorder))
-      T.check(sorder >= 1, string.format("square Bn = %g: the correction share falls at first order or faster", c.Bn), string.format("order %.2f", sorder))
+    local sorder = math.log(shares[1] / shares[2]) / math.log(2)
+    print(string.format("# square Bn = %g: the correction share's observed order %.2f", c.Bn, sorder))
+    if c.sorder then
+      T.check(sorder >= c.sorder, string.format("square Bn = %g: the correction share falls at first order or faster", c.Bn), string.format("order %.2f", sorder))
+    end
+    if c.un_from then
+      T.below(uns[2], uns[1], string.format("square Bn = %g: the unyielded share comes closer to FE's from dx = 1/20 to 1/40", c.Bn))
     end
     local order = math.log(errs[1] / errs[2]) / math.log(2)
     print(string.format("# square Bn = %g: observed order %.2f from dx = 1/20 to 1/40", c.Bn, order))
@@ -100,8 +112,9 @@ T.case("Bingham square, Bn = 1000: the force's deficit is the time step's, conve
   -- The part of the plastic stress above the ALM's r is explicit (docs/limitations.md): the
   -- force's error is first order in dt tau0 / (rho V H), whatever dx. At dx = 1/20 the mean
   -- of F / F_FE(h) over t in (0.002, 0.003) (the gap's FE, ln F linear in ln h) measured
-  -- 0.9681 / 0.9851 / 0.9952 at dt = 2e-6 / 1e-6 / 4e-7 (errors 0.032 / 0.015 / 0.005: order
-  -- 1.18 in dt; 7.5 s in all; 0.9985 at dx = 1/40, dt = 2.5e-7). Bounds: the error at 4e-7 at most 0.01
+  -- 0.9739 / 0.9851 / 0.9952 at dt = 2e-6 / 1e-6 / 4e-7 (errors 0.026 / 0.015 / 0.005: order
+  -- 1.05 in dt, the lag's limit taking the first steps below 2e-6; 7.5 s in all; 0.9985 at
+  -- dx = 1/40, dt = 2.5e-7). Bounds: the error at 4e-7 at most 0.01
   -- (twice the measured), an order in dt of at least 0.8 from 2e-6 to 4e-7.
   local errs, dts = {}, { 2e-6, 1e-6, 4e-7 }
   for q, dt in ipairs(dts) do
