@@ -90,7 +90,7 @@ stability: all
 	$(B)/sph scripts/stability.lua
 
 # the reference cases of ../shared/REFERENCES.md sections 1-4 at up to three resolutions:
-# docs/validation.md and docs/validation_*.png (about 13 minutes on one thread, the default;
+# docs/validation.md and docs/validation_*.png (about 28 minutes on one thread, the default;
 # make validate threads=2 for two)
 validate: all
 	$(B)/sph scripts/validate.lua $(if $(threads),threads=$(threads))
