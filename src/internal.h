@@ -23,6 +23,12 @@
  * start still hold at its end (the CFL limit of Morris, Fox & Zhu 1997, with the flow
  * speed for their sound speed). A smaller cfl is a user's way to a shorter step. */
 #define SPH_CFL 0.25
+/* The ALM's r is at most SPH_ALM_CAP rho h^2 / dt (viscous.c, plastic_update): the part of
+ * 2 r gamma above mu is explicit in the stress S, and its divergence (nested kernel sums) is
+ * stiffer than the implicit Morris sum for some particle-scale modes (at Bn = 1000,
+ * dx = 1/20, a zig-zag of the velocity grows for r dt / (rho h^2) above about 0.5, not
+ * below). The time step follows the lag this cap puts on a plug's stress (timestep.c). */
+#define SPH_ALM_CAP 0.5
 
 typedef struct sph_plate {
     double rect[4];      /* current rectangle (moves with the plate)                 */

@@ -34,9 +34,8 @@ static double plug_secant(const sph_world *w, double lo, double hi, int nvp) {
         double b = log(w->eta[i] / lo) * scale; /* a NaN falls in the first bin */
         count[b >= PLUG_BINS - 1 ? PLUG_BINS - 1 : b > 0 ? (int)b : 0]++;
     }
-    int need = (int)ceil(PLUG_SHARE * nvp), k = PLUG_BINS - 1;
-    for (int c = count[k]; c < need && k > 0; c += count[--k]) {
-    }
+    int need = (int)ceil(PLUG_SHARE * nvp), k = PLUG_BINS - 1, c = count[k];
+    while (c < need && k > 0) c += count[--k];
     return lo * exp((k + 1) / scale);
 }
 
@@ -87,16 +86,16 @@ double sph_timestep_compute(sph_world *w) {
     /* time accuracy: the split step's error grows with mu dt / (rho h^2), largest along a
      * free surface (SPH_SURFACE_CS, internal.h) */
     if (nus > 0) dt = fmin(dt, SPH_SURFACE_CS * h * h / nus);
-    /* time accuracy: the plastic stress's lag. With r <= ALM_CAP rho h^2 / dt (viscous.c) a
-     * multiplier's direction follows the rate over secant / r steps, a time
-     * T = 2 secant dt^2 / (rho h^2), and a plug deforms as a fluid of viscosity r until it has
-     * followed. T gammadot_rms <= LAG_STRAIN (the RMS rate of the viscoplastic particles, the
+    /* time accuracy: the plastic stress's lag. With r <= SPH_ALM_CAP rho h^2 / dt (internal.h)
+     * a multiplier's direction follows the rate over secant / r steps, a time
+     * T = secant dt^2 / (SPH_ALM_CAP rho h^2), and a plug deforms as a fluid of viscosity r
+     * until it has followed. T gammadot_rms <= LAG_STRAIN (the RMS rate of the viscoplastic particles, the
      * secant a plug's, plug_secant) keeps the strain the stress lags by small; a creeping
      * sample (small rates) hardly feels it. The square at Bn = 1000 comes to 0.967 / 0.986 of
      * FE's force at dx = 1/20, 1/40 (0.914 / 0.952 without; docs/limitations.md). */
     if (nvp > 0 && secmax > 0 && gd2 > 0) {
         double grms = sqrt(gd2 / nvp), sec = plug_secant(w, secmin, secmax, nvp);
-        dt = fmin(dt, h * sqrt(LAG_STRAIN * P->rho0 / (2.0 * sec * grms)));
+        dt = fmin(dt, h * sqrt(LAG_STRAIN * P->rho0 * SPH_ALM_CAP / (sec * grms)));
     }
     if (P->dt_max > 0) dt = fmin(dt, P->dt_max);
     /* The density error each step leaves (mostly near a free surface, where the

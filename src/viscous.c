@@ -77,18 +77,14 @@ static inline double surface_stretching(const sph_world *w, int i, const double 
  * (a stress-controlled mode converges at the rate r / (tangent + r) per step, the direction
  * of the stress at secant / (secant + r)); at most the secant at the present rate (a rate
  * that jumped, as at an impulsive start, would leave S = lam - 2 r gamma large and of the
- * wrong sign) and at most the plastic viscosity plus ALM_CAP rho h^2 / dt: the part of
- * 2 r gamma above mu is explicit in S, and its divergence (nested kernel sums) is stiffer
- * than the implicit Morris sum for some particle-scale modes (at Bn = 1000, dx = 1/20, a
- * zig-zag of the velocity grows for r dt / (rho h^2) above about 0.5, not below). */
-#define ALM_CAP 0.5
+ * wrong sign) and at most SPH_ALM_CAP rho h^2 / dt (internal.h). */
 
 static void plastic_update(sph_world *w, int i, double exx, double exy, double dt) {
     const sph_material *mt = &w->mats[w->mat[i]];
     double gp = w->gd[i], sl, tp = sph_rheology_stress(mt, gp, &sl);
     double sec = gp > 0 ? tp / gp : sph_rheology_eta(mt, 0.0);
     double gnow = 2.0 * hypot(exx, exy), mu = mt->model == SPH_BINGHAM ? mt->mu : 0.0;
-    double r = fmax(fmin(fmin(sqrt(sl * sec), sph_rheology_eta(mt, gnow)), ALM_CAP * w->rho[i] * w->h * w->h / dt), mu);
+    double r = fmax(fmin(fmin(sqrt(sl * sec), sph_rheology_eta(mt, gnow)), SPH_ALM_CAP * w->rho[i] * w->h * w->h / dt), mu);
     double qxx = w->lamxx[i] + 2.0 * r * exx, qxy = w->lamxy[i] + 2.0 * r * exy, q = hypot(qxx, qxy);
     double g = sph_rheology_prox(mt, q, r, gp), tg = sph_rheology_stress(mt, g, 0);
     double nx = q > 0 ? qxx / q : 0.0, ny = q > 0 ? qxy / q : 0.0;

@@ -65,7 +65,7 @@ T.case("Bingham square at t = 0+ against FE (Bn = 10, 1000), converging", functi
   for _, c in ipairs{ { Bn = 10, bounds = { 0.05, 0.03 }, order = 1, sd = 0.02, at0 = true, un = 0.12, un_bound = 0.04, at_plates = 0.9,
                         sbounds = { 0.1, 0.035 }, sorder = 1 },
                       { Bn = 1000, bounds = { 0.05, 0.03 }, order = 1, sd = 0.05, un = 0.50, un_bound = 0.08, un_from = 2,
-                        sbounds = { nil, 0.25 } } } do
+                        sbounds = { [2] = 0.25 } } } do
     local errs, shares, uns = {}, {}, {}
     for k, n in ipairs{ 20, 40 } do
       local r = square_t0(n, c.Bn)
