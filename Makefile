@@ -90,10 +90,10 @@ stability: all
 	$(B)/sph scripts/stability.lua
 
 # the reference cases of ../shared/REFERENCES.md sections 1-4 at up to three resolutions:
-# docs/validation.md and docs/validation_*.png (about 28 minutes on one thread, the default;
-# make validate threads=2 for two)
+# docs/validation.md and docs/validation_*.png (about 17 minutes on two cores: two sections at a
+# time, each world on one thread; jobs=1 for one process, threads=2 for two threads a world)
 validate: all
-	$(B)/sph scripts/validate.lua $(if $(threads),threads=$(threads))
+	$(B)/sph scripts/validate.lua $(if $(threads),threads=$(threads)) $(if $(jobs),jobs=$(jobs))
 
 # the seed paper's Figures 3-7 (../shared/paper), next to the references of
 # ../shared/REFERENCES.md: docs/paper.md and docs/paper/fig3.png ... fig7.png (the Figure 5

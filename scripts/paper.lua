@@ -34,22 +34,8 @@ local SPEC = {
   { "check", "flag", 0, "1: check the parameters, print the plan, run nothing" },
 }
 local o = params.args("paper", SPEC, ...)
-local function refuse(msg)
-  io.stderr:write("paper: ", msg, "\n")
-  os.exit(1)
-end
-local function list_of(name, s, lo, hi)
-  local t = {}
-  for v in tostring(s):gmatch("[^,]+") do
-    local x = math.tointeger(tonumber(v))
-    if not x or x < lo or x > hi then
-      refuse(("%s must be integers %d..%d separated by commas, got %q"):format(name, lo, hi, tostring(s)))
-    end
-    t[#t + 1] = x
-  end
-  if #t == 0 then refuse(("%s is empty"):format(name)) end
-  return t
-end
+local function refuse(msg) params.refuse("paper", msg) end
+local function list_of(name, s, lo, hi) return params.list("paper", name, s, lo, hi) end
 local quick = o.quick == 1
 local ns = list_of("n", o.n or (quick and "20" or "20,40"), 10, 160)
 table.sort(ns)

@@ -13,16 +13,39 @@
 --      start-up (Bn = 0.8) at the tabulated times, and the creeping Bingham lid-driven
 --      cavity (Bn = 0, 5): vortex centre and unyielded fraction.
 -- A case whose run raises an engine error is reported as "failed: <message>" and the script
--- goes on. Every world runs on `threads` threads (default 1).
---   build/sph scripts/validate.lua [threads=1] [out=docs] [only=1,2,3,4]
+-- goes on. Every world runs on `threads` threads (default 1), and `jobs` sections run at once,
+-- each in a process of its own (default 2: make validate takes about 17 minutes on two cores).
+--   build/sph scripts/validate.lua [threads=1] [jobs=2] [out=docs] [only=1,2,3,4]
 --     [n=20,40,80] (section 1) [rows=16,32,64] [ar=2,5,10] (section 2)
 --     [yield_n=20,40,80] (section 3) [flow_n=20,40,80] [cavity_n=20,40,80] (section 4)
 local sph = require "sph"
 local squeeze = require "sph.squeeze"
 local flows = require "sph.flows"
 local squeeze_validation = require "sph.squeeze_validation"
-local opt = ... or {}
-local out = opt.out or "docs"
+local params = require "sph.params"
+local SPEC = {
+  { "threads", "integer", 1, "threads of every world (1..256)" },
+  { "jobs", "integer", 2, "sections run at once, each in a process of its own (1..4)" },
+  { "out", "string", "docs", "folder of validation.md and its plots" },
+  { "only", "string", "1,2,3,4", "the sections to run, comma-separated, from 1..4" },
+  { "n", "string", nil, "section 1: resolutions 1/dx, comma-separated (20,40,80)" },
+  { "rows", "string", nil, "section 2: particle rows across the film (16,32,64)" },
+  { "ar", "string", nil, "section 2: aspect ratios a/h (2,5,10; given, the thin-film scheme's row is left out)" },
+  { "yield_n", "string", nil, "section 3: resolutions 1/dx (20,40,80)" },
+  { "flow_n", "string", nil, "section 4, Couette and Poiseuille: resolutions 1/dx (20,40,80)" },
+  { "cavity_n", "string", nil, "section 4, cavity: resolutions 1/dx (20,40,80)" },
+  { "part", "flag", 0, "1: run as one of the processes of a jobs > 1 run (writes OUT/validation.part<k>.md)" },
+  { "check", "flag", 0, "1: check the parameters, print the plan, run nothing" },
+}
+local opt = params.args("validate", SPEC, ...)
+local function refuse(msg) params.refuse("validate", msg) end
+for _, c in ipairs{ { "n", 4, 320 }, { "rows", 4, 256 }, { "ar", 0.5, 50, true }, { "yield_n", 4, 320 },
+                    { "flow_n", 4, 320 }, { "cavity_n", 4, 320 }, { "only", 1, 4 } } do
+  if opt[c[1]] then params.list("validate", c[1], opt[c[1]], c[2], c[3], c[4]) end
+end
+if opt.threads < 1 or opt.threads > 256 then refuse(("threads must be 1..256, got %d"):format(opt.threads)) end
+if opt.jobs < 1 or opt.jobs > 4 then refuse(("jobs must be 1..4, got %d"):format(opt.jobs)) end
+local out = opt.out
 -- the folder made and written to before the runs, not after them: a missing or read-only
 -- folder stops the script at once rather than at its end
 assert(sph.mkdir(out))
@@ -31,7 +54,7 @@ do
   probe:close()
   os.remove(out .. "/validation.md.tmp")
 end
-local threads = opt.threads or 1
+local threads = opt.threads
 
 local function numbers(s)
   local t = {}
@@ -40,7 +63,7 @@ local function numbers(s)
 end
 local ns = numbers(opt.n or "20,40,80")
 local only = {}
-for _, k in ipairs(numbers(opt.only or "1,2,3,4")) do only[k] = true end
+for _, k in ipairs(numbers(opt.only)) do only[k] = true end
 local clock0 = os.time()
 
 -- An engine error as one line of a Markdown table.
@@ -594,29 +617,96 @@ local function section4()
 end
 
 ---------------------------------------------------------------------------------------
+-- The sections run in `jobs` processes at once (default 2: each case is one thread, and the
+-- four sections take about the same time), each a copy of this script on a share of the
+-- sections (part=1) that writes its sections' Markdown to out/validation.part<k>.md and its
+-- plots; this process then puts validation.md together in section order.
 local sections = { section1, section2, section3, section4 }
-for k, f in ipairs(sections) do
-  if only[k] then
-    local t0 = os.time()
-    f()
-    timing[#timing + 1] = { k, os.time() - t0 }
-    say("section %d: %d s", k, os.time() - t0)
+local chosen = {}
+for k = 1, #sections do if only[k] then chosen[#chosen + 1] = k end end
+local jobs = opt.jobs
+if opt.check == 1 then
+  print(("validate: sections %s, %d at a time, %d thread%s a world, into %s/"):format(table.concat(chosen, ","),
+    math.min(jobs, #chosen), threads, threads == 1 and "" or "s", out))
+  os.exit(0)
+end
+
+local function part_file(k) return ("%s/validation.part%d.md"):format(out, k) end
+local function quote(s) return "'" .. tostring(s):gsub("'", "'\\''") .. "'" end
+
+local function run_here()
+  for _, k in ipairs(chosen) do
+    local t0, m0 = os.time(), #md + 1
+    sections[k]()
+    local dt = os.time() - t0
+    timing[#timing + 1] = { k, dt }
+    say("section %d: %d s", k, dt)
+    if opt.part == 1 then -- this section's Markdown, for the parent process
+      local f = assert(io.open(part_file(k) .. ".tmp", "w"))
+      f:write(("%d\n"):format(dt), table.concat(md, "", m0, #md))
+      assert(f:close())
+      assert(os.rename(part_file(k) .. ".tmp", part_file(k)))
+    end
   end
 end
 
-local f = assert(io.open(out .. "/validation.md.tmp", "w"))
-f:write("# Validation against independent references\n\n",
-  "Made by `make validate` (`scripts/validate.lua`); references in `../shared/REFERENCES.md`.\n\n")
-f:write(table.concat(md))
-f:write(("## Cost\n\nEvery world on %d thread%s; \"s\" in the tables is the engine's stepping time (`w:stats().wall_time`). "):format(threads,
-  threads == 1 and "" or "s"), "Wall-clock seconds of each section of this run:")
-for _, t in ipairs(timing) do f:write((" section %d, %d s;"):format(t[1], t[2])) end
-f:write((" in all %d s.\n"):format(os.time() - clock0))
-f:close()
-assert(os.rename(out .. "/validation.md.tmp", out .. "/validation.md"))
+local function run_jobs()
+  local groups = {}
+  for i, k in ipairs(chosen) do
+    local g = (i - 1) % jobs + 1
+    groups[g] = groups[g] or {}
+    table.insert(groups[g], k)
+  end
+  local pass = {}
+  for key, v in pairs(opt) do
+    if key ~= "only" and key ~= "jobs" and key ~= "part" and key ~= "check" then pass[#pass + 1] = quote(key .. "=" .. tostring(v)) end
+  end
+  local cmds = {}
+  for g, list in ipairs(groups) do
+    for _, k in ipairs(list) do os.remove(part_file(k)) end
+    cmds[g] = ("( %s %s only=%s part=1 %s ) &"):format(quote(arg[-1]), quote(arg[0]), table.concat(list, ","),
+      table.concat(pass, " "))
+    say(#list > 1 and "sections %s in a process of their own" or "section %s in a process of its own", table.concat(list, ", "))
+  end
+  os.execute(table.concat(cmds, " ") .. " wait")
+  local missing = {}
+  for _, k in ipairs(chosen) do
+    local f = io.open(part_file(k))
+    if f then
+      local dt = tonumber(f:read("l"))
+      md[#md + 1] = f:read("a")
+      f:close()
+      os.remove(part_file(k))
+      timing[#timing + 1] = { k, dt or 0 }
+    else
+      missing[#missing + 1] = k
+    end
+  end
+  if #missing > 0 then
+    refuse(("section%s %s stopped before writing its results (see the messages above); %s/validation.md is left as it was"):format(
+      #missing > 1 and "s" or "", table.concat(missing, ", "), out))
+  end
+end
+
+if opt.part == 1 or jobs == 1 or #chosen < 2 then run_here() else run_jobs() end
+-- plots of the sections run in this process (in jobs mode, each process wrote its own)
 for _, p in ipairs(plots) do
   local ok, e = sph.plot{ file = out .. "/" .. p.file, xlabel = p.xlabel, ylabel = p.ylabel, log = p.log or "xy",
                           series = p.series, title = p.title, yrange = p.yrange, height = p.height }
   if not ok then say("plot %s: %s", p.file, tostring(e)) end
 end
+if opt.part == 1 then return end
+
+local f = assert(io.open(out .. "/validation.md.tmp", "w"))
+f:write("# Validation against independent references\n\n",
+  "Made by `make validate` (`scripts/validate.lua`); references in `../shared/REFERENCES.md`.\n\n")
+f:write(table.concat(md))
+local inpar = jobs > 1 and #chosen > 1
+f:write(("## Cost\n\nEvery world on %d thread%s%s; \"s\" in the tables is the engine's stepping time (`w:stats().wall_time`). "):format(threads,
+  threads == 1 and "" or "s", inpar and (", %d sections at a time"):format(math.min(jobs, #chosen)) or ""),
+  "Wall-clock seconds of each section of this run:")
+for _, t in ipairs(timing) do f:write((" section %d, %d s;"):format(t[1], t[2])) end
+f:write((" in all %d s.\n"):format(os.time() - clock0))
+assert(f:close())
+assert(os.rename(out .. "/validation.md.tmp", out .. "/validation.md"))
 print("wrote " .. out .. "/validation.md")

@@ -118,6 +118,29 @@ function P.args(script, spec, ...)
   return o
 end
 
+-- A script's refusal of its parameters: "script: msg" on stderr, status 1.
+function P.refuse(script, msg)
+  io.stderr:write(script, ": ", msg, "\n")
+  os.exit(1)
+end
+
+-- The numbers of a comma-separated list s, each in lo..hi (integers unless real); a bad or
+-- empty list is refused (P.refuse) naming the parameter.
+function P.list(script, name, s, lo, hi, real)
+  local t = {}
+  for v in tostring(s):gmatch("[^,]+") do
+    local x = tonumber(v)
+    if not real then x = math.tointeger(x) end
+    if not x or x < lo or x > hi then
+      P.refuse(script, ("%s must be %s %g..%g separated by commas, got %q"):format(name, real and "numbers" or "integers", lo,
+        hi, tostring(s)))
+    end
+    t[#t + 1] = x
+  end
+  if #t == 0 then P.refuse(script, ("%s is empty"):format(name)) end
+  return t
+end
+
 -- The parameters as lines "name  default  help", for a script's usage message.
 function P.usage(spec)
   local lines = {}
