@@ -342,13 +342,15 @@ print(string.format((sig and "interrupted" or (ok and not stopped_h) and "done" 
   1e6 * s.wall_time / (w.steps * s.particles), s.solver_iterations_total / w.steps, s.max_density_error))
 print("wrote " .. out .. "/series.csv")
 -- The velocity should carry the flow; where the density correction moves the particles as
--- much as their velocity does (a stiff yield stress at the engine's step: the square at
--- Bn = 1000 measured 1.9 / 1.2 at dx = 1/20, 1/40, 0.27 at dt = 2e-6), the velocity field, and
--- so the stresses, forces and yield zones computed from it, are not the flow's
+-- much as their velocity does, the velocity field, and so the stresses, forces and yield
+-- zones computed from it, are not the flow's. The share falls as dx is refined (the square at
+-- Bn = 1000: 0.24 / 0.16 / 0.11 at dx = 1/20, 1/40, 1/80; the Bingham film of the README,
+-- 8 rows thick: 0.22, and 0.06 at 16 rows), not with a shorter step (that film at
+-- dt_max = 1e-5: 0.27)
 if s.correction_share > 0.1 then
   print(string.format("warning: the density correction made %.0f %% of the particles' motion (stats correction_share; "
     .. "under 5 %% where the velocity carries the flow): the velocity field, the stresses and the forces are not to be "
-    .. "trusted; a shorter step (dt_max=) lowers it (docs/limitations.md)", 100 * s.correction_share))
+    .. "trusted; a finer dx lowers it (docs/limitations.md)", 100 * s.correction_share))
 end
 if s.peak_density_error > 0.01 then
   print(string.format("warning: the density error reached %.2f %% during the run (above 1 %%): "
