@@ -275,6 +275,14 @@ static int l_world(lua_State *L) {
     if (!sph_lua_opt_present(L, 1, "dx")) luaL_error(L, "bad argument to 'world' (dx: number expected, got no value)");
     for (size_t k = 0; k < N_NUMBER_OPTS; k++) {
         double *field = (double *)((char *)&p + NUMBER_OPTS[k].offset);
+        if (field == &p.shifting) { /* "auto" (the default, SPH_SHIFTING_AUTO) or a number */
+            int ts = lua_getfield(L, 1, "shifting");
+            int isauto = ts == LUA_TSTRING && strcmp(lua_tostring(L, -1), "auto") == 0;
+            int bad = ts == LUA_TSTRING && !isauto && !lua_isnumber(L, -1);
+            lua_pop(L, 1);
+            if (bad) luaL_error(L, "bad argument to 'world' (shifting: a number >= 0 or \"auto\" expected)");
+            if (isauto) continue;
+        }
         *field = sph_lua_opt_number(L, 1, "world", NUMBER_OPTS[k].name, *field);
     }
     /* checked as a double: converting one beyond int (threads = 1e20) is undefined */
@@ -693,6 +701,7 @@ static int w_stats(lua_State *L) {
     SETN("correction_share", s.correction_share);
     SETN("correction_sq", s.correction_sq);
     SETN("motion_sq", s.motion_sq);
+    if (s.shifting_since >= 0) SETN("shifting_since", s.shifting_since); /* absent: not started by "auto" */
     SETN("density_alpha", s.density_alpha);
     SETI("density_passes", s.density_passes);
     SETI("density_fallbacks", s.density_fallbacks);

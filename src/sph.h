@@ -41,6 +41,11 @@ typedef enum { SPH_VISC_EXPLICIT = 0, SPH_VISC_IMPLICIT = 1 } sph_viscosity;
 
 /* The options a user chooses for a physical or a practical reason (sph.world{...},
  * docs/api.md); the scheme's numerical constants live in the file that uses them. */
+/* sph_params.shifting = SPH_SHIFTING_AUTO: no shifting while the particle lattice holds,
+ * shifting at SPH_SHIFTING_ON from the step a fluid pair is found closer than 0.7 dx. */
+#define SPH_SHIFTING_AUTO (-1.0)
+#define SPH_SHIFTING_ON 20.0
+
 typedef struct sph_params {
     double dx;             /* initial particle spacing (> 0)                       */
     double h;              /* smoothing length, the kernel's support is 3 h: 0 (the
@@ -50,7 +55,9 @@ typedef struct sph_params {
     double rho0;           /* reference density                                    */
     double gravity[2];     /* body force per unit mass                             */
     sph_viscosity viscosity;
-    double shifting;       /* particle-shifting coefficient, 0 = off              */
+    double shifting;       /* particle-shifting coefficient A, 0 = off; SPH_SHIFTING_AUTO
+                              (the default): off until the lattice clusters, then
+                              SPH_SHIFTING_ON (world.c, watch_clustering)           */
     double dt_max;         /* upper bound on dt, >= 0 (0: none)                    */
     double dt_min;         /* a step below this is an error (0: 1e-12 * h)         */
     int periodic[2];       /* periodic in x / y                                    */
@@ -206,6 +213,8 @@ typedef struct sph_stats {
                                  move dt (u^n + u^{n+1}) / 2, d_c the correction's
                                  (sph_world_stats derives it from the two sums below) */
     double correction_sq, motion_sq; /* the two sums behind correction_share */
+    double shifting_since;    /* with shifting = SPH_SHIFTING_AUTO: the time its shifting
+                                 started (-1: not, or shifting set by the caller) */
     double density_alpha;     /* smallest step length of the last step's density passes (1: full) */
     int density_passes;       /* density-correction passes in the last step */
     long density_fallbacks;   /* steps whose passes stalled above the density limit (0.8 %)

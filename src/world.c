@@ -23,6 +23,7 @@ void sph_params_default(sph_params *p) {
     p->surface_div = 1.5;
     p->density_tol = 0.005;
     p->thin_film = 0;
+    p->shifting = SPH_SHIFTING_AUTO;
 }
 
 int sph_world_fail(sph_world *w, const char *fmt, ...) {
@@ -41,7 +42,7 @@ static const char *check_params(const sph_params *p) {
     static const char *const bad[] = {
         "dx must be a positive number", "rho must be a positive number", "periodic range must have lo < hi",
         "an axis cannot be both periodic and a symmetry plane", "tol must be in (0, 1)", "gravity must be finite",
-        "shifting must be >= 0", "density_tol must be in [0, 1)", "thin_film must be 0 or 1",
+        "shifting must be >= 0 or auto (-1)", "density_tol must be in [0, 1)", "thin_film must be 0 or 1",
         "threads must be 1..256 (0: all cores)", "dt_max must be a number >= 0 (0: no bound)",
         "surface must be a number >= 0 (0: no free surface)",
         "h must be 0 (dx) or between dx and 2 dx: the kernel's support 3 h must hold the lattice's neighbours",
@@ -55,7 +56,7 @@ static const char *check_params(const sph_params *p) {
     }
     if (!(p->tol > 0 && p->tol < 1)) return bad[4];
     if (!isfinite(p->gravity[0]) || !isfinite(p->gravity[1])) return bad[5];
-    if (!(p->shifting >= 0)) return bad[6];
+    if (!(p->shifting >= 0 || p->shifting == SPH_SHIFTING_AUTO)) return bad[6];
     if (!(p->density_tol >= 0 && p->density_tol < 1)) return bad[7];
     if (p->thin_film != 0 && p->thin_film != 1) return bad[8];
     if (!(p->threads >= 0 && p->threads <= SPH_MAX_THREADS)) return bad[9];
@@ -94,6 +95,7 @@ sph_world *sph_world_new(const sph_params *p, char *err, size_t errlen) {
     w->par = *p;
     w->pin = -1;
     w->cluster_step = -1;
+    w->st.shifting_since = -1.0;
     w->dx = p->dx;
     /* h = dx by default: the quintic kernel reaches 3 dx, the support every figure of the
      * suite and of docs/validation.md was measured with (docs/method.md, "Kernel and
@@ -335,12 +337,19 @@ static int check_finite(sph_world *w) {
 
 /* Without shifting, a sample that stretches (the squeeze's extension) turns its lattice
  * into columns whose particles close in on each other, and the run fails later, far from the
- * cause (docs/limitations.md, "A squeeze needs shifting"). Every 8th step of an unshifted run
- * looks for a fluid pair closer than dx / 2 (W_ij above W(dx / 2), from the neighbour
- * build) and keeps when it first happened; a failure's message then says so. */
+ * cause (docs/limitations.md, "A squeeze needs shifting"); shifting from the start costs a
+ * channel its accuracy (rows that slide past each other meander). Every 8th step of an
+ * unshifted run looks for the closest fluid pair (the largest W_ij of the neighbour build).
+ * With shifting = SPH_SHIFTING_AUTO a pair closer than 0.7 dx turns shifting on at
+ * SPH_SHIFTING_ON for the rest of the run (par.shifting, so a saved state carries it): a
+ * flow that keeps the lattice (Couette, Poiseuille, the square at t = 0+) never gets there;
+ * DESIGN.md's squeeze at dx = 1/40 does at t = 0.2 and its cavity at t = 0.18, both of which
+ * fail without. With shifting = 0 a pair closer than dx / 2 is kept for a failure's message. */
+#define AUTO_SHIFT_GAP 0.7
 static void watch_clustering(sph_world *w) {
+    int autom = w->par.shifting == SPH_SHIFTING_AUTO;
     if (w->par.shifting > 0 || w->cluster_step >= 0 || w->steps % 8) return;
-    double wh = sph_kernel_value(0.5 * w->dx, w->h), wmax = 0.0;
+    double wh = sph_kernel_value((autom ? AUTO_SHIFT_GAP : 0.5) * w->dx, w->h), wmax = 0.0;
     int n = w->n;
 #pragma omp parallel for schedule(static) num_threads(w->threads) reduction(max : wmax)
     for (int i = 0; i < n; i++) {
@@ -348,7 +357,10 @@ static void watch_clustering(sph_world *w) {
         for (int k = w->nb_start[i]; k < w->nb_mid[i]; k++)
             if (w->nb_w[k] > wmax) wmax = w->nb_w[k];
     }
-    if (wmax > wh) {
+    if (wmax > wh && autom) {
+        w->par.shifting = SPH_SHIFTING_ON;
+        w->st.shifting_since = w->t;
+    } else if (wmax > wh) {
         w->cluster_step = w->steps;
         w->cluster_t = w->t;
     }
@@ -362,7 +374,7 @@ static int with_hint(sph_world *w) {
     snprintf(w->err + len, sizeof w->err - len,
              "; shifting is off and fluid particles came within dx / 2 of each other from step %ld (t = %g) on: "
              "a flow that stretches the particle lattice (a squeeze, a cavity) needs particle shifting, "
-             "sph.world{shifting = 20} (docs/limitations.md)",
+             "sph.world{shifting = 20}, or the default, \"auto\" (docs/limitations.md)",
              w->cluster_step, w->cluster_t);
     return -1;
 }

@@ -607,10 +607,12 @@ T.case("a time step below the minimum says what set it", function()
   T.checkerror("gravity 1e+30", "dt collapse names gravity when it sets the force limit", w.step, w)
 end)
 
-T.case("an unshifted squeeze that fails says it needs shifting", function()
+T.case("DESIGN.md's squeeze runs with the defaults; unshifted, it fails and says why", function()
   -- DESIGN.md's squeeze at dx = 1/20: without shifting the stretched lattice closes up
-  -- (measured: fluid particles within dx / 2 from step 560, t = 0.34) and the time step
-  -- collapses at t = 0.47; with shifting = 20 it reaches t = 0.7 (about 3 s in all)
+  -- (measured: fluid particles within dx / 2 from step 608, t = 0.34) and the time step
+  -- collapses at t = 0.49; with the default, shifting = "auto", shifting starts when a pair
+  -- comes within 0.7 dx (t = 0.198) and the run reaches t = 0.7, as with shifting = 20 from
+  -- the start (about 3 s each)
   local function squeeze(shifting)
     local w = sph.world{ dx = 1 / 20, rho = 1, symmetry = { x = 0 }, threads = 1, shifting = shifting }
     w:fill{ rect = { 0, 0, 0.5, 1 }, material = sph.bingham{ mu = 1, tau0 = 2, m = 800 } }
@@ -618,12 +620,18 @@ T.case("an unshifted squeeze that fails says it needs shifting", function()
     w:plate{ rect = { -2, 1, 2, 1.15 }, axis = "y" }:velocity(-1)
     return w, pcall(w.run, w, { until_t = 0.7, progress = false })
   end
-  local w, ok, err = squeeze(nil)
-  T.check(not ok, "the unshifted squeeze fails before t = 0.7", ("t = %g"):format(w.t))
+  local w, ok, err = squeeze(0)
+  T.check(not ok, "the unshifted squeeze (shifting = 0) fails before t = 0.7", ("t = %g"):format(w.t))
   T.check(not ok and tostring(err):find("needs particle shifting, sph.world{shifting = 20}", 1, true) ~= nil,
           "its message names the cause and the option", tostring(err))
+  w, ok, err = squeeze(nil)
+  T.check(ok and w.t >= 0.7, "with the defaults the squeeze reaches t = 0.7 (h = 0.3)", tostring(err))
+  local since = w:stats().shifting_since
+  T.check(since and since > 0.05 and since < 0.45, "its shifting started once the lattice clustered (before t = 0.45, where the unshifted run fails)",
+          tostring(since))
   w, ok, err = squeeze(20)
   T.check(ok and w.t >= 0.7, "the shifted squeeze reaches t = 0.7 (h = 0.3)", tostring(err))
+  T.check(w:stats().shifting_since == nil, "shifting = 20: no shifting_since")
 end)
 
 T.case("sph.mkdir makes a folder and its parents, and says why when it cannot", function()
