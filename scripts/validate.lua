@@ -28,20 +28,22 @@ local SPEC = {
   { "jobs", "integer", 2, "sections run at once, each in a process of its own (1..4)" },
   { "out", "string", "docs", "folder of validation.md and its plots" },
   { "only", "string", "1,2,3,4", "the sections to run, comma-separated, from 1..4" },
-  { "n", "string", nil, "section 1: resolutions 1/dx, comma-separated (20,40,80)" },
-  { "rows", "string", nil, "section 2: particle rows across the film (16,32,64)" },
+  { "n", "string", "20,40,80", "section 1: resolutions 1/dx, comma-separated" },
+  { "rows", "string", "16,32,64", "section 2: particle rows across the film" },
   { "ar", "string", nil, "section 2: aspect ratios a/h (2,5,10; given, the thin-film scheme's row is left out)" },
-  { "yield_n", "string", nil, "section 3: resolutions 1/dx (20,40,80)" },
-  { "flow_n", "string", nil, "section 4, Couette and Poiseuille: resolutions 1/dx (20,40,80)" },
-  { "cavity_n", "string", nil, "section 4, cavity: resolutions 1/dx (20,40,80)" },
+  { "yield_n", "string", "20,40,80", "section 3: resolutions 1/dx" },
+  { "flow_n", "string", "20,40,80", "section 4, Couette and Poiseuille: resolutions 1/dx" },
+  { "cavity_n", "string", "20,40,80", "section 4, cavity: resolutions 1/dx" },
   { "part", "flag", 0, "1: run as one of the processes of a jobs > 1 run (writes OUT/validation.part<k>.md)" },
   { "check", "flag", 0, "1: check the parameters, print the plan, run nothing" },
 }
 local opt = params.args("validate", SPEC, ...)
 local function refuse(msg) params.refuse("validate", msg) end
+-- the lists, checked and read once (ar: the default's 2,5,10 when not given)
+local lists = {}
 for _, c in ipairs{ { "n", 4, 320 }, { "rows", 4, 256 }, { "ar", 0.5, 50, true }, { "yield_n", 4, 320 },
                     { "flow_n", 4, 320 }, { "cavity_n", 4, 320 }, { "only", 1, 4 } } do
-  if opt[c[1]] then params.list("validate", c[1], opt[c[1]], c[2], c[3], c[4]) end
+  lists[c[1]] = params.list("validate", c[1], opt[c[1]] or "2,5,10", c[2], c[3], c[4])
 end
 if opt.threads < 1 or opt.threads > 256 then refuse(("threads must be 1..256, got %d"):format(opt.threads)) end
 if opt.jobs < 1 or opt.jobs > 4 then refuse(("jobs must be 1..4, got %d"):format(opt.jobs)) end
@@ -56,14 +58,9 @@ do
 end
 local threads = opt.threads
 
-local function numbers(s)
-  local t = {}
-  for v in tostring(s):gmatch("[^,]+") do t[#t + 1] = tonumber(v) end
-  return t
-end
-local ns = numbers(opt.n or "20,40,80")
+local ns = lists.n
 local only = {}
-for _, k in ipairs(numbers(opt.only)) do only[k] = true end
+for _, k in ipairs(lists.only) do only[k] = true end
 local clock0 = os.time()
 
 -- An engine error as one line of a Markdown table.
@@ -212,7 +209,7 @@ end
 local HEAD2 = "| case | rows (dx) | F | F_FE | F / F_FE | F / F_FE, contact width | contact half-width at t1 (area's) | error | " ..
   "observed order | F / F_FE at t = 0+ | peak density error | correction share | steps | s |\n"
 local function section2()
-  local rowsl, ars = numbers(opt.rows or "16,32,64"), numbers(opt.ar or "2,5,10")
+  local rowsl, ars = lists.rows, lists.ar
   local cases = {}
   for _, ar in ipairs(ars) do cases[#cases + 1] = { ar = ar, label = ("a/h = %g"):format(ar) } end
   if not opt.ar then
@@ -303,7 +300,7 @@ end
 
 local HEAD3 = "| load | dx | h(1) | reference | error | observed order | V(1) | yielded | correction share | steps | s |\n"
 local function section3()
-  local nl = numbers(opt.yield_n or "20,40,80")
+  local nl = lists.yield_n
   local hstar = yield_height(1.5 * YIELD.Fy)
   -- the table's F_tau,y(h) interpolated log-log between h = 0.8 and 0.6
   local H, T = refs.HS, refs.FTY
@@ -548,8 +545,8 @@ end
 local HEAD_CAVITY = "| Bn | dx | y_c | reference | error | observed order | change since 0.1 Re | unyielded | reference | " ..
   "error | observed order | steps | s |\n"
 local function section4()
-  local nl = numbers(opt.flow_n or "20,40,80")
-  local cl = numbers(opt.cavity_n or "20,40,80")
+  local nl = lists.flow_n
+  local cl = lists.cavity_n
   local series = {}
   w_md("## Exact and 1D flows (section 4)\n\n",
     "Channels 0 < y < 1 between plates 3 dx thick, periodic in x over 10 dx (the channels of `sph.flows`), rho = mu = 1, ",
