@@ -42,9 +42,8 @@ typedef enum { SPH_VISC_EXPLICIT = 0, SPH_VISC_IMPLICIT = 1 } sph_viscosity;
 /* The options a user chooses for a physical or a practical reason (sph.world{...},
  * docs/api.md); the scheme's numerical constants live in the file that uses them. */
 /* sph_params.shifting = SPH_SHIFTING_AUTO: no shifting while the particle lattice holds,
- * shifting at SPH_SHIFTING_ON from the step a fluid pair is found closer than 0.7 dx. */
+ * shifting with A = 20 from the step a fluid pair is found closer than 0.7 dx. */
 #define SPH_SHIFTING_AUTO (-1.0)
-#define SPH_SHIFTING_ON 20.0
 
 typedef struct sph_params {
     double dx;             /* initial particle spacing (> 0)                       */
@@ -57,7 +56,7 @@ typedef struct sph_params {
     sph_viscosity viscosity;
     double shifting;       /* particle-shifting coefficient A, 0 = off; SPH_SHIFTING_AUTO
                               (the default): off until the lattice clusters, then
-                              SPH_SHIFTING_ON (world.c, watch_clustering)           */
+                              20 (world.c, watch_clustering)                        */
     double dt_max;         /* upper bound on dt, >= 0 (0: none)                    */
     double dt_min;         /* a step below this is an error (0: 1e-12 * h)         */
     int periodic[2];       /* periodic in x / y                                    */

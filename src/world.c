@@ -341,11 +341,12 @@ static int check_finite(sph_world *w) {
  * channel its accuracy (rows that slide past each other meander). Every 8th step of an
  * unshifted run looks for the closest fluid pair (the largest W_ij of the neighbour build).
  * With shifting = SPH_SHIFTING_AUTO a pair closer than 0.7 dx turns shifting on at
- * SPH_SHIFTING_ON for the rest of the run (par.shifting, so a saved state carries it): a
+ * AUTO_SHIFT_A for the rest of the run (par.shifting, so a saved state carries it): a
  * flow that keeps the lattice (Couette, Poiseuille, the square at t = 0+) never gets there;
  * DESIGN.md's squeeze at dx = 1/40 does at t = 0.2 and its cavity at t = 0.18, both of which
  * fail without. With shifting = 0 a pair closer than dx / 2 is kept for a failure's message. */
 #define AUTO_SHIFT_GAP 0.7
+#define AUTO_SHIFT_A 20.0 /* the squeeze scripts' coefficient (method.md, "Particle shifting") */
 static void watch_clustering(sph_world *w) {
     int autom = w->par.shifting == SPH_SHIFTING_AUTO;
     if (w->par.shifting > 0 || w->cluster_step >= 0 || w->steps % 8) return;
@@ -358,7 +359,7 @@ static void watch_clustering(sph_world *w) {
             if (w->nb_w[k] > wmax) wmax = w->nb_w[k];
     }
     if (wmax > wh && autom) {
-        w->par.shifting = SPH_SHIFTING_ON;
+        w->par.shifting = AUTO_SHIFT_A;
         w->st.shifting_since = w->t;
     } else if (wmax > wh) {
         w->cluster_step = w->steps;
