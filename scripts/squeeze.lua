@@ -13,8 +13,12 @@
 -- relative residual of the pressure and viscous solves; docs/performance.md).
 -- Writes out/series.csv: t, h, plate velocity, plate force, solver iterations, max
 -- density error, and the lubrication reference (Newtonian: mu V / h^6 or h(t) under load).
+-- The force is its mean since the last output (the plate's impulse over the interval, as a
+-- load cell reads it: one step's force can jump when a particle at the plate's edge joins
+-- or leaves the free surface, docs/limitations.md), and a force reference is the mean of
+-- the reference over the same interval.
 -- Its first row is the start, t = 0, before any step: no force is computed there yet, so
--- its force cell is empty (and force.png starts at the first step's force).
+-- its force cell is empty (and force.png starts at the first output's mean).
 -- Exit status: 0 the run reached t_end; 1 an error (bad arguments, a gap under 3 particles
 -- across asked for, an engine error: the message says which); 2 it reached h_stop before
 -- t_end ("stopped at t = ..., h = ... <= h_stop"); 130 / 143 interrupted.
@@ -280,6 +284,21 @@ local function progress(w, el)
   progress_shown = true
 end
 local last_wall = 0 -- the wall time at the last output (for the progress line)
+-- the clock, the plate's impulse and gap at the last output: each row's force is the mean
+-- over the interval since. An interrupted run writes them next to its state (FILE.last,
+-- exact hexadecimal numbers), so that its restart's first row is the uninterrupted one's;
+-- without that file, the start of this run.
+local last = { t = w.t, impulse = top.impulse, h = top.position }
+if restart then
+  local f = io.open(restart .. ".last")
+  local lt, li, lh
+  if f then
+    lt, li, lh = (f:read("l") or ""):match("^(%S+) (%S+) (%S+)$")
+    f:close()
+  end
+  lt, li, lh = tonumber(lt), tonumber(li), tonumber(lh)
+  if lt and li and lh and lt <= w.t then last = { t = lt, impulse = li, h = lh } end
+end
 local function record(w)
   local s = w:stats()
   last_wall = s.wall_time
@@ -291,10 +310,18 @@ local function record(w)
       .. "(README, Thin films): %s", w.t, h, h / dx, thin_options))
   end
   -- before the first step (the t = 0 row) the plate has no force computed yet: the cell
-  -- is empty and the force plot leaves it out
-  local force = w.steps > 0 and top.force or nil
-  -- the reference is a force at constant velocity, a gap under a load
-  local r = ref(h, w.t) * (mode == "velocity" and S.F or S.H)
+  -- is empty and the force plot leaves it out. Later rows: the mean since the last output
+  local span = w.t - last.t
+  local force = w.steps > 0 and span > 0 and (top.impulse - last.impulse) / span or nil
+  -- the reference is a force at constant velocity (its mean over the same interval:
+  -- Simpson's rule, the gap linear in t) or a gap under a load
+  local r
+  if mode == "velocity" and span > 0 then
+    r = (ref(last.h, last.t) + 4 * ref(0.5 * (last.h + h), w.t - 0.5 * span) + ref(h, w.t)) / 6 * S.F
+  else
+    r = ref(h, w.t) * (mode == "velocity" and S.F or S.H)
+  end
+  last.t, last.impulse, last.h = w.t, top.impulse, h
   series:write(string.format("%.8g,%.8g,%.8g,%s,%d,%.4e,%s\n", w.t * S.T, h * S.H, top:velocity() * S.U,
     force and string.format("%.8g", force * S.F) or "", s.solver_iterations, s.max_density_error,
     r == r and string.format("%.8g", r) or ""))
@@ -392,6 +419,11 @@ if sig then
   -- the state at the interrupted step, to go on from (the step ended before the error)
   local state = out .. "/state.bin"
   local saved, why = pcall(w.save, w, state)
+  if saved then
+    local f = io.open(state .. ".last", "w")
+    saved = f and f:write(string.format("%a %a %a\n", last.t, last.impulse, last.h)) and f:close()
+    if not saved then why = "cannot write " .. state .. ".last" end
+  end
   if saved then
     local args = {}
     for i = 1, #arg do

@@ -43,6 +43,7 @@ typedef struct sph_plate {
     int mass_set;        /* mass given by the caller                                 */
     double force;        /* fluid force along the axis, whole sample                 */
     double force_visc;   /* its viscous part (this step)                              */
+    double impulse;      /* the sum of force * dt over the steps taken: sph_plate_impulse */
     int count;           /* real particles                                            */
     int doubled;         /* straddles a symmetry plane: whole = 2 x simulated half   */
     int face_side;       /* +1: fluid on the high side of the axis, -1: low, 0: ?    */

@@ -909,6 +909,7 @@ static int p_index(lua_State *L) {
     if (!strcmp(k, "position")) lua_pushnumber(L, sph_plate_position(w, i));
     else if (!strcmp(k, "axial_velocity")) lua_pushnumber(L, sph_plate_velocity(w, i));
     else if (!strcmp(k, "force")) lua_pushnumber(L, sph_plate_force(w, i));
+    else if (!strcmp(k, "impulse")) lua_pushnumber(L, sph_plate_impulse(w, i));
     else if (!strcmp(k, "mass")) lua_pushnumber(L, sph_plate_mass(w, i));
     else if (!strcmp(k, "index")) lua_pushinteger(L, i + 1);
     else if (!strcmp(k, "axis")) {

@@ -41,7 +41,7 @@ int sph_plate_fill(sph_world *w, const double rect[4], int axis) {
     pl->rect[3] = rect[3];
     pl->axis = axis;
     pl->mode = SPH_PLATE_FIXED;
-    pl->vel = pl->vel_new = pl->load = pl->force = pl->force_visc = 0.0;
+    pl->vel = pl->vel_new = pl->load = pl->force = pl->force_visc = pl->impulse = 0.0;
     pl->slide[0] = pl->slide[1] = 0.0;
     pl->mass_set = 0;
     pl->face_side = 0;
@@ -369,6 +369,7 @@ double sph_plate_load(const sph_world *w, int k) {
     return w->plates[k].mode == SPH_PLATE_LOAD ? w->plates[k].load : 0.0;
 }
 double sph_plate_force(const sph_world *w, int k) { return w->plates[k].force; }
+double sph_plate_impulse(const sph_world *w, int k) { return w->plates[k].impulse; }
 double sph_plate_mass(const sph_world *w, int k) { return w->plates[k].mass; }
 void sph_plate_rect(const sph_world *w, int k, double rect[4]) {
     memcpy(rect, w->plates[k].rect, sizeof(double) * 4);

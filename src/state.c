@@ -18,7 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define STATE_MAGIC "SPHSTAT:" /* the format's version: a file of another is refused */
+#define STATE_MAGIC "SPHSTAT;" /* the format's version: a file of another is refused */
 
 typedef struct {
     char magic[8];
@@ -157,10 +157,11 @@ static int check_plate(reader *r, int k, const sph_plate *pl) {
         return damaged(r, "plate %d: mode %d on a fixed plate (axis -1)", k + 1, (int)pl->mode);
     if (!(pl->mass > 0 && isfinite(pl->mass)))
         return damaged(r, "plate %d: mass %g is not a positive finite number", k + 1, pl->mass);
-    const double v[] = {pl->vel, pl->vel_new, pl->load, pl->force, pl->force_visc, pl->slide[0], pl->slide[1]};
+    const double v[] = {pl->vel, pl->vel_new, pl->load, pl->force, pl->force_visc, pl->slide[0], pl->slide[1],
+                        pl->impulse};
     static const char *const names[] = {"velocity", "new velocity", "load", "force", "viscous force", "slide x",
-                                        "slide y"};
-    for (int q = 0; q < 7; q++)
+                                        "slide y", "impulse"};
+    for (int q = 0; q < 8; q++)
         if (!isfinite(v[q])) return damaged(r, "plate %d: %s %g is not finite", k + 1, names[q], v[q]);
     if (pl->count < 0 || (pl->doubled != 0 && pl->doubled != 1) || (pl->mass_set != 0 && pl->mass_set != 1) ||
         pl->face_side < -1 || pl->face_side > 1)

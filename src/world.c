@@ -505,6 +505,7 @@ static int advance(sph_world *w, double dt, double t0) {
     sph_lap(w, SPH_PHASE_SHIFTING);
     for (int k = 0; k < w->nplates; k++) sph_plate_move(w, k, 0.5 * dt * (vold[k] + w->plates[k].vel));
 
+    for (int k = 0; k < w->nplates; k++) w->plates[k].impulse += w->plates[k].force * dt;
     w->t += dt;
     w->dt = dt;
     w->dt_prev = dt;

@@ -282,6 +282,28 @@ T.case("laws", function()
   T.checkerror("each", "run with a non-function each", w.run, w, { until_t = 1, each = 3 })
 end)
 
+-- plate.impulse is the sum of force * dt over the steps (its change over a time span, over
+-- the span, the mean force: squeeze.lua's series), 0 before the first, read-only
+T.case("plate impulse", function()
+  local w = sph.world{ dx = 0.1, threads = 1 }
+  w:fill{ rect = { 0, 0, 1, 1 }, material = sph.newtonian{ mu = 1 } }
+  local bottom = w:plate{ rect = { -1, -0.3, 2, 0 } }
+  local top = w:plate{ rect = { -1, 1, 2, 1.3 }, axis = "y" }
+  top:velocity(-0.5)
+  T.check(top.impulse == 0 and bottom.impulse == 0, "plate.impulse is 0 before the first step")
+  local sum, sumb = 0, 0
+  for _ = 1, 20 do
+    w:step()
+    sum, sumb = sum + top.force * w.dt, sumb + bottom.force * w.dt
+  end
+  T.close(top.impulse, sum, 1e-12, "plate.impulse: the sum of force * dt over the steps", top.impulse)
+  T.close(bottom.impulse, sumb, 1e-12, "a fixed plate's too", bottom.impulse)
+  T.check(top.impulse > 0, "the fluid pushes back on a plate pressed down into it: a positive impulse", top.impulse)
+  T.checkerror("cannot be set", "plate.impulse is read-only", function() top.impulse = 1 end)
+  T.checkerror("attempt to call a number value (method 'impulse')", "plate:impulse() is an error",
+               function() top:impulse() end)
+end)
+
 -- A step that fails on a non-finite or non-positive value leaves it in the particles; a
 -- next step run on from there would have the neighbour build, meeting a particle its cell
 -- grid does not hold (a NaN), write before its arrays (a heap-buffer-overflow that
