@@ -156,7 +156,7 @@ double sph_plate_load(const sph_world *w, int plate);
 double sph_plate_force(const sph_world *w, int plate);
 /* The sum of that force times dt over every step taken (the whole sample's impulse). Its
  * change between two times over their difference is the force's mean between them: a load
- * cell's reading. The force of one step can jump (up to about twice the mean, for that step
+ * cell's reading. The force of one step can jump (to a few times the mean, for that step
  * only) when a particle at the plate's edge joins or leaves the free surface; the mean over
  * a few tens of steps hardly feels it (docs/limitations.md). */
 double sph_plate_impulse(const sph_world *w, int plate);
