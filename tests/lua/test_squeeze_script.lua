@@ -32,6 +32,35 @@ T.case("headline squeeze script, a short run", function()
   T.check(not text:find("note:", 1, true), "no thin-film note on a square sample", text)
 end)
 
+-- The force column is the mean since the last row (the plate's impulse over the interval),
+-- so a Newtonian run's reference is the mean of mu V / h^6 over the same interval: Simpson's
+-- rule on the rows' gaps (linear in t at constant V), to the print's 8 digits.
+T.case("headline squeeze script, the reference is the interval's mean", function()
+  local text, code = run("mode=velocity Re=1 Bn=0 dx=0.05 t_end=0.1 every=0.02 frames=0 plots=0")
+  T.check(code == 0, "squeeze.lua exits 0 on a Newtonian run", text)
+  local rows = {}
+  local f = io.open(dir .. "/series.csv")
+  if f then
+    f:read("l")
+    for line in f:lines() do
+      local c = {}
+      for v in (line .. ","):gmatch("([^,]*),") do c[#c + 1] = v end
+      rows[#rows + 1] = { h = tonumber(c[2]), force = tonumber(c[4]), ref = tonumber(c[7]) }
+    end
+    f:close()
+  end
+  T.check(#rows == 6 and rows[1].force == nil, "six rows, the first without a force", #rows)
+  local worst, forces = 0, true
+  for k = 2, #rows do
+    local a, b = rows[k - 1].h, rows[k].h
+    local mean = (a ^ -6 + 4 * (0.5 * (a + b)) ^ -6 + b ^ -6) / 6
+    worst = math.max(worst, math.abs(rows[k].ref / mean - 1))
+    forces = forces and rows[k].force ~= nil and rows[k].force > 0
+  end
+  T.below(worst, 1e-6, "each row's reference is the mean of mu V / h^6 since the last row")
+  T.check(forces, "each row after the first has a positive mean force")
+end)
+
 T.case("headline squeeze script, a thin gap", function()
   local text, code = run("mode=velocity Re=1 Bn=0 width=1.6 height=0.2 dx=0.05 t_end=0.001")
   T.check(code == 0, "squeeze.lua exits 0 on a short thin-film run", text)
