@@ -13,6 +13,24 @@ os.remove(dir)
 
 local function run(args) return T.script("squeeze.lua", ("%s out=%s threads=1"):format(args, dir)) end
 
+-- series.csv's rows after the header, each a list of its numbers (nil for an empty cell)
+local function series(file)
+  local rows = {}
+  local f = io.open(file)
+  if not f then return rows end
+  f:read("l")
+  for line in f:lines() do
+    local r, c = {}, 0
+    for v in (line .. ","):gmatch("([^,]*),") do -- by position: an empty cell leaves a hole
+      c = c + 1
+      r[c] = tonumber(v)
+    end
+    rows[#rows + 1] = r
+  end
+  f:close()
+  return rows
+end
+
 local function lines(file)
   local n = 0
   local f = io.open(file)
@@ -38,24 +56,14 @@ end)
 T.case("headline squeeze script, the reference is the interval's mean", function()
   local text, code = run("mode=velocity Re=1 Bn=0 dx=0.05 t_end=0.1 every=0.02 frames=0 plots=0")
   T.check(code == 0, "squeeze.lua exits 0 on a Newtonian run", text)
-  local rows = {}
-  local f = io.open(dir .. "/series.csv")
-  if f then
-    f:read("l")
-    for line in f:lines() do
-      local c = {}
-      for v in (line .. ","):gmatch("([^,]*),") do c[#c + 1] = v end
-      rows[#rows + 1] = { h = tonumber(c[2]), force = tonumber(c[4]), ref = tonumber(c[7]) }
-    end
-    f:close()
-  end
-  T.check(#rows == 6 and rows[1].force == nil, "six rows, the first without a force", #rows)
+  local rows = series(dir .. "/series.csv") -- t, h, velocity, force, iterations, density error, reference
+  T.check(#rows == 6 and rows[1][4] == nil, "six rows, the first without a force", #rows)
   local worst, forces = 0, true
   for k = 2, #rows do
-    local a, b = rows[k - 1].h, rows[k].h
+    local a, b = rows[k - 1][2], rows[k][2]
     local mean = (a ^ -6 + 4 * (0.5 * (a + b)) ^ -6 + b ^ -6) / 6
-    worst = math.max(worst, math.abs(rows[k].ref / mean - 1))
-    forces = forces and rows[k].force ~= nil and rows[k].force > 0
+    worst = math.max(worst, math.abs(rows[k][7] / mean - 1))
+    forces = forces and rows[k][4] ~= nil and rows[k][4] > 0
   end
   T.below(worst, 1e-6, "each row's reference is the mean of mu V / h^6 since the last row")
   T.check(forces, "each row after the first has a positive mean force")
@@ -160,12 +168,11 @@ for _, sig in ipairs{ { "INT", 130, "SIGINT" }, { "TERM", 143, "SIGTERM" } } do
     local lf2 = io.open(d .. "/state.bin.last")
     local lt, li, lh = (lf2 and lf2:read("l") or ""):match("^(%S+) (%S+) (%S+)$")
     if lf2 then lf2:close() end
-    local last_row
-    for line in io.lines(d .. "/series.csv") do last_row = line end
-    local row_t, row_h = last_row:match("^([^,]+),([^,]+),")
-    T.check(tonumber(lt) and tonumber(li) and math.abs(tonumber(lt) - tonumber(row_t)) <= 1e-7
-            and math.abs(tonumber(lh) - tonumber(row_h)) <= 1e-7 and tonumber(lt) <= w.t,
-            "state.bin.last holds the last row's time and gap (and the impulse then)", tostring(lt) .. " " .. last_row)
+    local got = series(d .. "/series.csv")
+    local row = got[#got] or {}
+    T.check(tonumber(lt) and tonumber(li) and row[1] and math.abs(tonumber(lt) - row[1]) <= 1e-7
+            and math.abs(tonumber(lh) - row[2]) <= 1e-7 and tonumber(lt) <= w.t,
+            "state.bin.last holds the last row's time and gap (and the impulse then)", tostring(lt) .. " " .. tostring(row[1]))
     w:close()
     if sig[1] ~= "INT" then return end
     -- continued to the end, against the run never interrupted
@@ -253,19 +260,6 @@ end)
 -- series in s, m, m/s and N/m are the twin's times the scales (1 s, 0.01 m, 0.01 m/s,
 -- 1e-3 N/m). Under a load the speed scale is the load's viscous speed |F| / mu: F = -0.01 N/m
 -- gives U = 0.1 m/s, Re = 10, Bn = 0.2, M = 1000 and the twin's load -1.
-local function series(file)
-  local rows = {}
-  local f = io.open(file)
-  if not f then return rows end
-  f:read("l")
-  for line in f:lines() do
-    local r = {}
-    for v in (line .. ","):gmatch("([^,]*),") do r[#r + 1] = tonumber(v) end
-    rows[#rows + 1] = r
-  end
-  f:close()
-  return rows
-end
 local function twins(si_args, dl_args, sc, name)
   local sdir, ddir = dir .. "/si_" .. name, dir .. "/dl_" .. name
   local cmd = "%s %s/scripts/squeeze.lua %s frames=0 plots=0 threads=1 out=%s 2>&1; echo \"exit=$?\""
