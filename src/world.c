@@ -503,9 +503,11 @@ static int advance(sph_world *w, double dt, double t0) {
     w->st.pressure_solves += w->solver.solves - ns1;
     if (w->par.shifting > 0) sph_shifting_apply(w, dt);
     sph_lap(w, SPH_PHASE_SHIFTING);
-    for (int k = 0; k < w->nplates; k++) sph_plate_move(w, k, 0.5 * dt * (vold[k] + w->plates[k].vel));
+    for (int k = 0; k < w->nplates; k++) { /* the plates move; each sums the force it held (sph_plate_impulse) */
+        sph_plate_move(w, k, 0.5 * dt * (vold[k] + w->plates[k].vel));
+        w->plates[k].impulse += w->plates[k].force * dt;
+    }
 
-    for (int k = 0; k < w->nplates; k++) w->plates[k].impulse += w->plates[k].force * dt;
     w->t += dt;
     w->dt = dt;
     w->dt_prev = dt;
