@@ -420,9 +420,14 @@ if sig then
   local state = out .. "/state.bin"
   local saved, why = pcall(w.save, w, state)
   if saved then
-    local f = io.open(state .. ".last", "w")
-    saved = f and f:write(string.format("%a %a %a\n", last.t, last.impulse, last.h)) and f:close()
-    if not saved then why = "cannot write " .. state .. ".last" end
+    -- without it the restart still runs: its first row's force is the mean since the restart
+    local f, err = io.open(state .. ".last", "w")
+    local wrote = f and f:write(string.format("%a %a %a\n", last.t, last.impulse, last.h))
+    if f then wrote = f:close() and wrote end
+    if not wrote then
+      io.stderr:write(string.format("squeeze: cannot write %s.last (%s): a restart's first force is then the mean "
+        .. "since the restart, not since the last row\n", state, tostring(err or "write failed")))
+    end
   end
   if saved then
     local args = {}
