@@ -278,7 +278,7 @@ end
 -- compressing), from t = 0 to t = 1. References: under 0.75 F_y the sample only creeps,
 -- h(1) > 0.98 (V of order 1e-3 or less); under 1.5 F_y it slows down near h*, where
 -- Bn F_tau,y(h*) = load with F_tau,y(h) ~ 1/(2 h^3) + 1.5/h (within 3 %; barrelling ignored).
-local YIELD = { Bn = 10, M = 800, Re = 1, Fty1 = refs.FTY[1], t_end = 1 }
+local YIELD = { Bn = 10, M = 800, Re = 1, Fty1 = refs.FTY[1], t_end = 1, probe_t = 0.2 }
 YIELD.Fy = YIELD.Bn * YIELD.Fty1
 local function yield_height(F) return refs.plastic_height(YIELD.Bn, F) end
 
@@ -289,13 +289,29 @@ local function yield_run(rec, frac, n)
                                 world = { threads = threads } }
   rec.w = w
   local ts, hs = { 0 }, { top.position }
+  local h_lb -- the first gap at which the shape's lower bound (below) carries the load
   w:run{ until_t = YIELD.t_end, every = 0.01, each = function()
     ts[#ts + 1], hs[#hs + 1] = w.t, top.position
+    if frac > 1 and not h_lb and w.t > 0 and YIELD.Bn * refs.shape_lower_bound(w:field("x"), w:field("y"), top.position, dx) >= F then
+      h_lb = top.position
+    end
   end }
   local s = w:stats()
-  return { h = top.position, V = top:velocity(), force = top.force, yielded = s.yielded / s.fluid, steps = w.steps,
-           correction_share = s.correction_share,
-           cpu = s.wall_time, peak = s.peak_density_error, ts = ts, hs = hs }
+  local r = { h = top.position, V = top:velocity(), force = top.force, yielded = s.yielded / s.fluid, steps = w.steps,
+              correction_share = s.correction_share,
+              cpu = s.wall_time, peak = s.peak_density_error, ts = ts, hs = hs }
+  if frac > 1 then
+    -- the shape reached: a lower bound on the load it carries without flowing (the largest
+    -- rectangle inside it, refs.shape_lower_bound); then 0.8 of that bound for PROBE_T more,
+    -- under which a Bingham sample can only creep
+    local fty, a = refs.shape_lower_bound(w:field("x"), w:field("y"), r.h, dx)
+    r.a_lb, r.F_lb, r.h_lb = a, YIELD.Bn * fty, h_lb
+    top:load(-0.8 * r.F_lb)
+    w:run{ until_t = YIELD.t_end + YIELD.probe_t }
+    r.creep = (r.h - top.position) / YIELD.probe_t
+    r.cpu = w:stats().wall_time
+  end
+  return r
 end
 
 local HEAD3 = "| load | dx | h(1) | reference | error | observed order | V(1) | yielded | correction share | steps | s |\n"
@@ -325,7 +341,7 @@ local function section3()
     "correction share the share of the particles' motion over the run that the density correction made, not their ",
     "velocity (stats.correction_share).\n\n",
     HEAD3, "|---|---|---|---|---|---|---|---|---|---|---|\n")
-  local series, hseries = {}, {}
+  local series, hseries, probes, rows75 = {}, {}, {}, {}
   for _, c in ipairs(cases) do
     local list = {}
     for k, n in ipairs(nl) do
@@ -344,6 +360,8 @@ local function section3()
         w_md(("| %s | 1/%d | %.4f%s | %s | %.4f | %s | %.3g | %.3f | %.4f | %d | %.1f |\n"):format(c.label, nl[k], r.h, verdict, c.ref, r.err,
           ofmt(o[k]), r.V, r.yielded, r.correction_share, r.steps, r.cpu))
         xs[#xs + 1], es[#es + 1] = r.dx, r.err
+        if r.F_lb then probes[#probes + 1] = { n = nl[k], r = r } end
+        if c.frac < 1 then rows75[#rows75 + 1] = { n = nl[k], V = r.V } end
         hseries[#hseries + 1] = { x = r.ts, y = r.hs, label = ("%s, dx = 1/%d"):format(c.label, nl[k]) }
       else
         say("yield %s, dx = 1/%d: failed: %s", c.label, nl[k], r.msg)
@@ -351,6 +369,31 @@ local function section3()
       end
     end
     if #xs > 0 then series[#series + 1] = { x = xs, y = es, label = ("%s: %s"):format(c.label, c.err_name), style = "both" } end
+  end
+  if #probes > 0 then
+    w_md("\nThe shape the sample under 1.5 F_y has reached at t = 1 carries, without flowing, at least the rigid-plastic ",
+      "limit load F_lb of the largest rectangle inside it (limit analysis' lower-bound theorem: a stress field the ",
+      "rectangle carries, continued by zero outside it, is admissible for the whole sample; `sph.references.shape_lower_bound`: ",
+      "the rectangle through the outermost particle centres of the narrowest row, a_lb its half-width, its limit load ",
+      "from section 3's FE table). Where the load is below F_lb a Bingham sample with M = 800 can only creep (V of ",
+      "order 10^-3, as under 0.75 F_y above); a sample still moving faster is too soft, whatever its height. From t = 1 ",
+      ("the load is then lowered to 0.8 F_lb for %g of time; creep is the plate's mean speed over it (the 1.5 F_y rows' s above includes it). "):format(YIELD.probe_t),
+      "h_lb is the gap at the first output (every 0.01 of time) where F_lb of the shape then reached was at least the ",
+      "load: a Bingham sample going through the same shapes would have stopped there or before, above h_lb (the ",
+      "shapes are the engine's, so h_lb is not independent of it, but its use of them is: a stopping height below ",
+      "h_lb contradicts the theorem).\n\n",
+      "| dx | h(1) | a_lb | F_lb | load / F_lb | V(1) | creep under 0.8 F_lb | creep under 0.75 F_y (fresh square, V(1)) | h_lb | h_lb / h* - 1 |\n",
+      "|---|---|---|---|---|---|---|---|---|---|\n")
+    local fresh = {}
+    for _, row in ipairs(rows75 or {}) do fresh[row.n] = row.V end
+    for _, p in ipairs(probes) do
+      local r = p.r
+      say("yield 1.5 F_y, dx = 1/%d: shape at t = 1: a_lb = %.4f, F_lb = %.3f, load / F_lb = %.3f, V(1) = %.4g; creep under 0.8 F_lb %.4g; h_lb %s",
+        p.n, r.a_lb, r.F_lb, 1.5 * YIELD.Fy / r.F_lb, r.V, r.creep, r.h_lb and ("%.4f"):format(r.h_lb) or "not reached")
+      w_md(("| 1/%d | %.4f | %.4f | %.2f | %.3f | %.3g | %.3g | %s | %s | %s |\n"):format(p.n, r.h, r.a_lb, r.F_lb, 1.5 * YIELD.Fy / r.F_lb,
+        r.V, r.creep, fresh[p.n] and ("%.3g"):format(-fresh[p.n]) or "", r.h_lb and ("%.4f"):format(r.h_lb) or "not reached",
+        r.h_lb and ("%.3f"):format(r.h_lb / hstar - 1) or ""))
+    end
   end
   hseries[#hseries + 1] = { x = { 0, YIELD.t_end }, y = { 0.98, 0.98 }, label = "0.98 (0.75 F_y must stay above)" }
   hseries[#hseries + 1] = { x = { 0, YIELD.t_end }, y = { hstar, hstar }, label = ("h* = %.3f (1.5 F_y)"):format(hstar) }

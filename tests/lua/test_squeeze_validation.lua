@@ -50,6 +50,40 @@ T.case("the rectangle references (sph.references): FE's table by aspect ratio, t
   T.check(R.rect_force(1, 0.4) == nil, "rect_force below a / h = 0.5: nil (no reference)")
 end)
 
+T.case("the rigid-plastic lower bound of a sample's shape (sph.references)", function()
+  local R = require "sph.references"
+  -- rect_plastic_fe is section 3's FE table at its gaps, scale-free (tau0 h g(a / h)), and
+  -- within the fit's 3.5 % between them
+  for k, h in ipairs(R.HS) do
+    T.close(R.rect_plastic_fe(h, 1 / (2 * h)), R.FTY[k], 1e-9, ("rect_plastic_fe at h = %g: FE's F_tau,y"):format(h))
+  end
+  for _, r in ipairs{ 0.3, 0.6, 0.97, 1.7, 4, 8 } do
+    T.close(R.rect_plastic_fe(0.6, 0.6 * r) * 2, R.rect_plastic_fe(1.2, 1.2 * r), 1e-9, ("rect_plastic_fe at a / h = %g: twice the size, twice the load"):format(r))
+    T.below(math.abs(R.rect_plastic_fe(1, r) / R.rect_plastic(1, r) - 1), 0.035, ("rect_plastic_fe at a / h = %g: within 3.5 %% of the fit"):format(r))
+  end
+  -- a lattice rectangle of 10 x 8 particles (dx = 0.1, gap 0.8): the rectangle through the
+  -- outermost centres, a = 0.95; a barrel (middle rows wider) keeps the plates' rows' width,
+  -- a waist (one row narrower) takes its own
+  local function sample(widths)
+    local xs, ys = {}, {}
+    for j, nx in ipairs(widths) do
+      for i = 1, nx do xs[#xs + 1], ys[#ys + 1] = (i - 0.5) * 0.1, (j - 0.5) * 0.1 end
+    end
+    return xs, ys
+  end
+  local function bound(widths)
+    local xs, ys = sample(widths)
+    return R.shape_lower_bound(xs, ys, 0.8, 0.1)
+  end
+  local f, a = bound{ 10, 10, 10, 10, 10, 10, 10, 10 }
+  T.close(a, 0.95, 1e-12, "shape_lower_bound: a rectangle's half-width through its outermost centres")
+  T.close(f, R.rect_plastic_fe(0.8, 0.95), 1e-12, "shape_lower_bound: that rectangle's limit load")
+  local _, ab = bound{ 10, 11, 12, 13, 13, 12, 11, 10 }
+  T.close(ab, 0.95, 1e-12, "shape_lower_bound: a barrel's narrowest rows, at the plates")
+  local _, aw = bound{ 10, 10, 10, 7, 10, 10, 10, 10 }
+  T.close(aw, 0.65, 1e-12, "shape_lower_bound: a waist's narrowest row")
+end)
+
 -- runs a case at resolutions res (default: its quick ones); returns the results and the
 -- observed order between the first two
 local function study(c, res)
