@@ -8,7 +8,9 @@
 --   2. thin films (Newtonian, V = -1, Re = 0.05): rectangles at a/h = 2, 5, 10, the plate
 --      force against the FE / lubrication force at the current gap and aspect ratio;
 --   3. yield: a Bingham square (Bn = 10, M = 800, Re = 1) under 0.75 and 1.5 times its
---      rigid-plastic limit load, the gap at t = 1;
+--      rigid-plastic limit load, the gap at t = 1; and the shape reached under 1.5 times it
+--      against limit analysis' lower bound (the load it must carry without flowing), with the
+--      creep under 0.8 of that bound;
 --   4. exact and 1D flows: Bingham Couette start-up (Bn = 1) and Bingham Poiseuille
 --      start-up (Bn = 0.8) at the tabulated times, and the creeping Bingham lid-driven
 --      cavity (Bn = 0, 5): vortex centre and unyielded fraction.
@@ -302,10 +304,10 @@ local function yield_run(rec, frac, n)
               cpu = s.wall_time, peak = s.peak_density_error, ts = ts, hs = hs }
   if frac > 1 then
     -- the shape reached: a lower bound on the load it carries without flowing (the largest
-    -- rectangle inside it, refs.shape_lower_bound); then 0.8 of that bound for PROBE_T more,
+    -- rectangle inside it, refs.shape_lower_bound); then 0.8 of that bound for probe_t more,
     -- under which a Bingham sample can only creep
     local fty, a = refs.shape_lower_bound(w:field("x"), w:field("y"), r.h, dx)
-    r.a_lb, r.F_lb, r.h_lb = a, YIELD.Bn * fty, h_lb
+    r.a_lb, r.F_lb, r.h_lb, r.load = a, YIELD.Bn * fty, h_lb, F
     top:load(-0.8 * r.F_lb)
     w:run{ until_t = YIELD.t_end + YIELD.probe_t }
     r.creep = (r.h - top.position) / YIELD.probe_t
@@ -385,12 +387,12 @@ local function section3()
       "| dx | h(1) | a_lb | F_lb | load / F_lb | V(1) | creep under 0.8 F_lb | creep under 0.75 F_y (fresh square, V(1)) | h_lb | h_lb / h* - 1 |\n",
       "|---|---|---|---|---|---|---|---|---|---|\n")
     local fresh = {}
-    for _, row in ipairs(rows75 or {}) do fresh[row.n] = row.V end
+    for _, row in ipairs(rows75) do fresh[row.n] = row.V end
     for _, p in ipairs(probes) do
       local r = p.r
       say("yield 1.5 F_y, dx = 1/%d: shape at t = 1: a_lb = %.4f, F_lb = %.3f, load / F_lb = %.3f, V(1) = %.4g; creep under 0.8 F_lb %.4g; h_lb %s",
-        p.n, r.a_lb, r.F_lb, 1.5 * YIELD.Fy / r.F_lb, r.V, r.creep, r.h_lb and ("%.4f"):format(r.h_lb) or "not reached")
-      w_md(("| 1/%d | %.4f | %.4f | %.2f | %.3f | %.3g | %.3g | %s | %s | %s |\n"):format(p.n, r.h, r.a_lb, r.F_lb, 1.5 * YIELD.Fy / r.F_lb,
+        p.n, r.a_lb, r.F_lb, r.load / r.F_lb, r.V, r.creep, r.h_lb and ("%.4f"):format(r.h_lb) or "not reached")
+      w_md(("| 1/%d | %.4f | %.4f | %.2f | %.3f | %.3g | %.3g | %s | %s | %s |\n"):format(p.n, r.h, r.a_lb, r.F_lb, r.load / r.F_lb,
         r.V, r.creep, fresh[p.n] and ("%.3g"):format(-fresh[p.n]) or "", r.h_lb and ("%.4f"):format(r.h_lb) or "not reached",
         r.h_lb and ("%.3f"):format(r.h_lb / hstar - 1) or ""))
     end
