@@ -24,10 +24,12 @@
  * speed for their sound speed). A smaller cfl is a user's way to a shorter step. */
 #define SPH_CFL 0.25
 /* The ALM's r is at most SPH_ALM_CAP rho h^2 / dt (viscous.c, plastic_update): the part of
- * 2 r gamma above mu is explicit in the stress S, and its divergence (nested kernel sums) is
- * stiffer than the implicit Morris sum for some particle-scale modes (at Bn = 1000,
- * dx = 1/20, a zig-zag of the velocity grows for r dt / (rho h^2) above about 0.5, not
- * below). The time step follows the lag this cap puts on a plug's stress (timestep.c). */
+ * 2 r gamma above mu is explicit in the stress S, and its divergence (nested kernel sums)
+ * does not damp the particle-scale modes that the implicit Morris sum does. The plate force's
+ * step-to-step noise grows with r (the square at Bn = 1000, dx = 1/20: spread 0.0022 at this
+ * cap, 0.0090 at 4 rho h^2 / dt), and r up to the law's secant inside a sample moves the
+ * creeping cavity's vortex centre away from FE (docs/limitations.md). The time step follows
+ * the lag this cap puts on a plug's stress (timestep.c). */
 #define SPH_ALM_CAP 0.5
 
 typedef struct sph_plate {
