@@ -226,7 +226,7 @@ static const char *const REMOVED[][2] = {
     {"pressure_predictor", "carries the last step's pressure gradient in the implicit viscous step"},
     {"wall", "extrapolates the wall velocity linearly (Morris)"},
     {"projection_passes", "projects once a step"},
-    {"dt_growth", "lets dt grow by at most 25 % a step"},
+    {"dt_growth", "lets dt grow by at most 25 % a step (5 % near the density tolerance)"},
     {"density_relax", "aims to remove the whole density error"},
     {"density_passes", "makes up to 2 density passes a step while the error exceeds density_tol"},
     {"density_limit", "makes more passes, then descent moves, while the density error exceeds 0.8 %"},

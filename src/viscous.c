@@ -294,11 +294,18 @@ static void transpose_accel(const sph_world *w, int i, double *ax, double *ay, d
 /* (div S)_i / rho_i for the explicit stress S (deviatoric: S_yy = -S_xx), in the symmetric
  * form sum_j V_j (S_i + S_j) . grad W_ij: over a truncated support its excess, 2 S_i . g,
  * meets the pressure's 2 p_i g, so that a surface holding p = n . tau . n feels no net
- * normal force from its truncation. A wall particle carries S_i's shear part and the
- * opposite of its normal part (tau_nn = 2 eta du_n/dn vanishes on a no-slip face, and S is
- * deviatoric, so on an axis-aligned face S_xx does): a plate takes the shear stress of the
- * material on it and no normal stress but the pressure. The walls' part goes into fp[k]
- * (plate k's axis, the whole sample) when fp is given. */
+ * normal force from its truncation. A wall particle carries S_i's shear part, and of its
+ * normal part (on an axis-aligned face S_xx, S being deviatoric) the multiplier's lam_xx
+ * less the rate's: S = lam - (the penalty's r gamma). lam is the stress itself, which no
+ * wall condition fixes: where the material is plastic against a plate its normal part is
+ * what equilibrium asks, and the plate takes -p + lam_nn. The rate's part is a viscous
+ * stress, 0 in the normal direction on a no-slip face (du_n/dn = 0) as in the implicit
+ * Morris sum (wall_coeff). With lam_nn held to 0 on the face too, the first row felt
+ * 2 lam_nn g (g = sum over its walls of V grad W) along the normal: its velocity ran into
+ * the plates (0.005 in the square at rest under 0.8 F_y, plate speed 0.002, the correction
+ * taking it back), and a sample below its yield load crept 5-10 times too fast
+ * (docs/limitations.md). The walls' part goes into fp[k] (plate k's axis, the whole sample)
+ * when fp is given. */
 static void stress_accel(const sph_world *w, int i, double *ax, double *ay, double *fp) {
     int k0 = w->nb_start[i], km = w->nb_mid[i], k1 = w->nb_start[i + 1];
     double sxx = w->sxx[i], sxy = w->sxy[i], fx = 0.0, fy = 0.0, ri = 1.0 / w->rho[i];
@@ -310,7 +317,8 @@ static void stress_accel(const sph_world *w, int i, double *ax, double *ay, doub
     }
     for (int k = km; k < k1; k++) {
         int j = w->nb_j[k];
-        double c = 2.0 * w->vol[j], wx = c * sxy * w->nb_gy[k], wy = c * sxy * w->nb_gx[k];
+        double c = 2.0 * w->vol[j];
+        double wx = c * (sxx * w->nb_gx[k] + sxy * w->nb_gy[k]), wy = c * (sxy * w->nb_gx[k] - sxx * w->nb_gy[k]);
         fx += wx;
         fy += wy;
         plate_reaction(w, i, j, wx, wy, fp);
