@@ -294,18 +294,15 @@ static void transpose_accel(const sph_world *w, int i, double *ax, double *ay, d
 /* (div S)_i / rho_i for the explicit stress S (deviatoric: S_yy = -S_xx), in the symmetric
  * form sum_j V_j (S_i + S_j) . grad W_ij: over a truncated support its excess, 2 S_i . g,
  * meets the pressure's 2 p_i g, so that a surface holding p = n . tau . n feels no net
- * normal force from its truncation. A wall particle carries S_i's shear part, and of its
- * normal part (on an axis-aligned face S_xx, S being deviatoric) the multiplier's lam_xx
- * less the rate's: S = lam - (the penalty's r gamma). lam is the stress itself, which no
- * wall condition fixes: where the material is plastic against a plate its normal part is
- * what equilibrium asks, and the plate takes -p + lam_nn. The rate's part is a viscous
- * stress, 0 in the normal direction on a no-slip face (du_n/dn = 0) as in the implicit
- * Morris sum (wall_coeff). With lam_nn held to 0 on the face too, the first row felt
- * 2 lam_nn g (g = sum over its walls of V grad W) along the normal: its velocity ran into
- * the plates (0.005 in the square at rest under 0.8 F_y, plate speed 0.002, the correction
- * taking it back), and a sample below its yield load crept 5-10 times too fast
- * (docs/limitations.md). The walls' part goes into fp[k] (plate k's axis, the whole sample)
- * when fp is given. */
+ * normal force from its truncation. A wall particle carries S_i whole, as it carries the
+ * pressure, so that a row along a plate feels no such excess: S is mostly the multiplier,
+ * a stress that no wall condition fixes (where the material is plastic against a plate its
+ * normal part is what equilibrium asks), and the plate takes -p + S_nn. With S_nn held to 0
+ * on the face (the walls carrying -S_nn), the first row felt 2 S_nn g along the normal (g
+ * the sum over its walls of V grad W): its velocity ran into the plates (0.005 in the
+ * square at rest under 0.8 F_y, plate speed 0.002, the correction taking it back), and a
+ * sample below its yield load crept 5-10 times too fast (docs/limitations.md). The walls'
+ * part goes into fp[k] (plate k's axis, the whole sample) when fp is given. */
 static void stress_accel(const sph_world *w, int i, double *ax, double *ay, double *fp) {
     int k0 = w->nb_start[i], km = w->nb_mid[i], k1 = w->nb_start[i + 1];
     double sxx = w->sxx[i], sxy = w->sxy[i], fx = 0.0, fy = 0.0, ri = 1.0 / w->rho[i];
