@@ -399,7 +399,8 @@ g.save(out)
     end
     if b.un and b.un >= 0.5 and t >= 0.5 then diff = "Bn = 5 mostly unyielded, as the limit load says" end
     if a.un and a.un < 0.02 and t >= 0.05 then
-      diff = (diff ~= "" and diff .. "; " or "") .. "Bn = 2: no unyielded zone at the plate centre (limitations.md)"
+      diff = (diff ~= "" and diff .. "; " or "") ..
+        (a.un > 0 and "Bn = 2: under 2 % of the sample unyielded" or "Bn = 2: no unyielded zone")
     end
     w_md(("| %g | %s | %s / %s | %s / %s | %s |\n"):format(t, words[k], f3(a.h), f3(b.h), f3(a.un, "%.2f"), f3(b.un, "%.2f"), diff))
   end
