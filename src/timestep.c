@@ -16,10 +16,11 @@
 /* dt grows at most 25 % a step: the density error a longer step makes shows steps late. */
 #define DT_GROWTH 1.25
 /* Where the density error is within a factor 2 of its tolerance, the step is the density
- * control's, and it changes by at most 5 % a step, up or down. Faster, the control cycles
- * (the error shows steps late), and the plate force moves with the step's ratio to the
- * last, about as dt_prev / dt: a film of 5 rows at Bn = 100 had 0.8 of its force while dt
- * grew by 25 % a step and 1.25-1.3 while it shrank by 20 % (0.96-0.98 at a steady step). */
+ * control's, and it grows by at most 5 % a step (it still shrinks by up to 20 %). Growing
+ * faster, it overshoots (the error shows steps late) and cycles, and the plate force moves
+ * with the step's ratio to the last, about as dt_prev / dt: a film of 5 rows at Bn = 100
+ * had 0.8 of its force while dt grew by 25 % a step (up to 7 times its floor) and 1.25-1.3
+ * while it shrank back by 20 % (0.96-0.98 at a steady step). */
 #define DT_NEAR_TOL 1.05
 /* The strain by which the plastic stress may lag the rate (below). */
 #define LAG_STRAIN 0.1
