@@ -109,9 +109,10 @@ double sph_timestep_compute(sph_world *w) {
     /* The density error each step leaves (mostly near a free surface, where the
      * projection is least exact) grows with dt, about in proportion. So dt also follows
      * the density error: while it exceeds density_tol, dt shrinks in proportion (by at most
-     * 20 % a step), down to a twentieth of the other limits (an error that does not come from dt must not stall
-     * the run). With implicit viscosity the first step, which may start a plate
-     * impulsively, is that twentieth; the explicit scheme's first step is already short. */
+     * 20 % a step), down to a twentieth of the other limits (an error that does not come
+     * from dt must not stall the run). With implicit viscosity the first step, which may
+     * start a plate impulsively, is that twentieth; the explicit scheme's first step is
+     * already short. */
     double floor = 0.05 * dt;
     if (w->dt_prev <= 0) {
         if (P->viscosity == SPH_VISC_IMPLICIT) dt = floor;

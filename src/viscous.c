@@ -143,8 +143,8 @@ static void surface_normal_part(const sph_world *w, int i, double *axx, double *
  * viscoplastic neighbours), for a Newtonian one mu gammadot. The multiplier carries
  * particle-scale noise, and the magnitude of a noisy tensor is biased upward: with |lam| of
  * the particle itself the square's unyielded share was 0.025 / 0.039 at dx = 1/20, 1/40
- * (FE 0.11-0.13 at Bn = 10); averaging the tensor first gives 0.110 / 0.104, and 0.545 / 0.497
- * at Bn = 1000 (FE 0.45-0.55). */
+ * (FE 0.11-0.13 at Bn = 10); averaging the tensor first gives 0.080 / 0.099, and 0.435 / 0.474
+ * at Bn = 1000 (FE 0.45-0.55; method.md). */
 static void yield_stress(sph_world *w) {
     int n = w->n;
     double w0 = sph_kernel_value(0.0, w->h);
