@@ -363,9 +363,14 @@ if nframes > 0 and #frames < nframes and not sig and w.t > frame_t + 1e-9 * t_en
 end
 if nvtu > 0 and #vtus < nvtu and not sig and (#vtus == 0 or vtus[#vtus].t < w.t) then vtu(w, true) end
 local s = w:stats()
+-- the force as the series' last row gives it (its mean over the last output interval, as a
+-- load cell reads it): one step's force carries the step's noise (a particle coming to the
+-- free surface moves it by several per cent for that step)
+local force_end = fs[#fs]
+if not (force_end and force_end == force_end) or ts[#ts] ~= w.t * S.T then force_end = top.force * S.F end
 print(string.format((sig and "interrupted" or (ok and not stopped_h) and "done" or "stopped") .. ": t=%.4g h=%.4f force=%.5g  %d steps in %.1f s (%.0f steps/s, %.2f us per particle-step)  "
   .. "mean pressure iterations %.1f  max density error %.2e",
-  w.t * S.T, top.position * S.H, top.force * S.F, w.steps, s.wall_time, w.steps / s.wall_time,
+  w.t * S.T, top.position * S.H, force_end, w.steps, s.wall_time, w.steps / s.wall_time,
   1e6 * s.wall_time / (w.steps * s.particles), s.solver_iterations_total / w.steps, s.max_density_error))
 print("wrote " .. out .. "/series.csv")
 -- The velocity should carry the flow; where the density correction moves the particles as

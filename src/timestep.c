@@ -20,7 +20,10 @@
  * faster, it overshoots (the error shows steps late) and cycles, and the plate force moves
  * with the step's ratio to the last, about as dt_prev / dt: a film of 5 rows at Bn = 100
  * had 0.8 of its force while dt grew by 25 % a step (up to 7 times its floor) and 1.25-1.3
- * while it shrank back by 20 % (0.96-0.98 at a steady step). */
+ * while it shrank back by 20 % (0.96-0.98 at a steady step). The cause: the projection's
+ * leftover divergence carries about half a film's pressure to the next step, made over
+ * dt_prev and removed over dt (docs/limitations.md, "The plate force moves with the step's
+ * ratio to the last"). */
 #define DT_NEAR_TOL 1.05
 /* The strain by which the plastic stress may lag the rate (below). */
 #define LAG_STRAIN 0.1

@@ -10,8 +10,8 @@ local T = require "sph.test"
 local square_t0 = require("sph.squeeze_validation").square_t0
 
 T.case("Newtonian square at t = 0+ against FE, converging", function()
-  -- measured (one thread): F(0+) / F_FE 0.9861 / 0.9947 / 1.0018 at dx = 1/20, 1/40, 1/80
-  -- (errors 0.0139, 0.0053, 0.0018: order 1.5), the window mean's spread 0.008-0.009,
+  -- measured (one thread): F(0+) / F_FE 0.9861 / 0.9947 / 1.0017 at dx = 1/20, 1/40, 1/80
+  -- (errors 0.0139, 0.0053, 0.0017: order 1.5), the window mean's spread 0.007-0.009,
   -- 621 / 2522 / 10198 steps. Bounds: 0.03 at 1/20 and 1/40 (REFERENCES.md's 3 %), 0.015 at
   -- 1/80; the observed order from 1/20 to 1/80 at least 1; the spread under 0.02.
   -- The velocity carries the flow: the share of the particles' motion that the density
@@ -41,17 +41,16 @@ T.case("Bingham square at t = 0+ against FE (Bn = 10, 1000), converging", functi
   -- The Bingham free surface at p = n . tau . n (tau0 + mu gammadot on the stretching side;
   -- with p = 0 the force was 0.52 / 0.57 of FE at Bn = 10 and 0.39 / 0.50 at Bn = 1000).
   -- Measured (one thread) at dx = 1/20, 1/40 (1/80 in make validate):
-  --   Bn = 10, F(0+) / F_FE: 0.9776 / 0.9961, errors 0.022 / 0.004, order 2.5.
+  --   Bn = 10, F(0+) / F_FE: 0.9862 / 0.9992, errors 0.014 / 0.0008.
   --   Bn = 1000, the window mean against the gap's FE (its force builds up over the first
-  --   0.005 and falls nonlinearly, so it has no t = 0+ line): 0.9669 / 0.9860, order 1.24,
-  --   in 10,455 / 22,220 steps (the time step on the plastic stress's lag, timestep.c;
-  --   0.914 / 0.952 without it).
+  --   0.005 and falls nonlinearly, so it has no t = 0+ line): 0.9900 / 0.9956, order 1.2,
+  --   in 9,481 / 21,958 steps (the time step on the plastic stress's lag, timestep.c).
   -- Bounds: Bn = 10 0.05 at 1/20, REFERENCES.md's 3 % at 1/40, an order of at least 1;
   -- Bn = 1000 0.05 at 1/20 (1.5 x the measured), 3 % at 1/40, an order of at least 1; the
   -- spread under 0.02 / 0.05.
   -- The unyielded share at t = 0.02 (the kernel-averaged multiplier under tau0): FE 0.11-0.13
-  -- at Bn = 10 (not mesh-converged, REFERENCES.md), 0.45-0.55 at Bn = 1000; measured 0.110 /
-  -- 0.104 and 0.400 / 0.449. Bounds: within 0.04 of 0.12 and 0.08 of 0.50; at Bn = 10 at least
+  -- at Bn = 10 (not mesh-converged, REFERENCES.md), 0.45-0.55 at Bn = 1000; measured 0.080 /
+  -- 0.099 and 0.435 / 0.474. Bounds: within 0.04 of 0.12 and 0.08 of 0.50; at Bn = 10 at least
   -- 0.9 of the unyielded particles within 0.25 of a plate and at x < 0.45 (FE's wedges: 0.18
   -- deep at x = 0, reaching x = 0.405). At Bn = 1000 the share is bounded at 1/40 only, and
   -- asked to come closer to FE's from 1/20 to 1/40: at 1/20 it converges in dt to a share
@@ -59,9 +58,9 @@ T.case("Bingham square at t = 0+ against FE (Bn = 10, 1000), converging", functi
   -- 0.385 at 1e-6), the 0.545 it used to show there being the multiplier's lag behind its
   -- all-unyielded start.
   -- The share of the motion the density correction made (see the Newtonian case): Bn = 10
-  -- 0.047 / 0.016 (order 1.5), bounds 0.1 / 0.035 and an order of at least 1; Bn = 1000
-  -- 0.236 / 0.161 (1.92 / 1.22 without the lag's limit), bound 0.25 at 1/40 (1.5 x the
-  -- measured; not yet converging at first order: docs/limitations.md).
+  -- 0.043 / 0.016 (order 1.45), bounds 0.1 / 0.035 and an order of at least 1; Bn = 1000
+  -- 0.231 / 0.155 (1.92 / 1.22 without the lag's limit), bound 0.25 at 1/40 (not yet
+  -- converging at first order: docs/limitations.md).
   for _, c in ipairs{ { Bn = 10, bounds = { 0.05, 0.03 }, order = 1, sd = 0.02, at0 = true, un = 0.12, un_bound = 0.04, at_plates = 0.9,
                         sbounds = { 0.1, 0.035 }, sorder = 1 },
                       { Bn = 1000, bounds = { 0.05, 0.03 }, order = 1, sd = 0.05, un = 0.50, un_bound = 0.08, un_from = 2,
@@ -112,9 +111,10 @@ T.case("Bingham square, Bn = 1000: the force's deficit is the time step's, conve
   -- The part of the plastic stress above the ALM's r is explicit (docs/limitations.md): the
   -- force's error is first order in dt tau0 / (rho V H), whatever dx. At dx = 1/20 the mean
   -- of F / F_FE(h) over t in (0.002, 0.003) (the gap's FE, ln F linear in ln h) measured
-  -- 0.9739 / 0.9851 / 0.9952 at dt = 2e-6 / 1e-6 / 4e-7 (errors 0.026 / 0.015 / 0.005: order
-  -- 1.05 in dt, the lag's limit taking the first steps below 2e-6; 7.5 s in all; 0.9985 at
-  -- dx = 1/40, dt = 2.5e-7). Bounds: the error at 4e-7 at most 0.01
+  -- 0.9739 / 0.9851 / 0.9952 at dt = 2e-6 / 1e-6 / 4e-7 when this test was written (errors
+  -- 0.026 / 0.015 / 0.005: order 1.05 in dt), and since the step follows the plastic stress's
+  -- lag (timestep.c, which takes the steps below 2e-6 early on) 0.9968 / 0.9986 / 1.0004
+  -- (errors 0.0032 / 0.0014 / 0.0004: order 1.29; 7.5 s in all). Bounds: the error at 4e-7 at most 0.01
   -- (twice the measured), an order in dt of at least 0.8 from 2e-6 to 4e-7.
   local errs, dts = {}, { 2e-6, 1e-6, 4e-7 }
   for q, dt in ipairs(dts) do
