@@ -16,14 +16,12 @@
 /* dt grows at most 25 % a step: the density error a longer step makes shows steps late. */
 #define DT_GROWTH 1.25
 /* Where the density error is within a factor 2 of its tolerance, the step is the density
- * control's, and it grows by at most 5 % a step (it still shrinks by up to 20 %). Growing
- * faster, it overshoots (the error shows steps late) and cycles, and the plate force moves
- * with the step's ratio to the last, about as dt_prev / dt: a film of 5 rows at Bn = 100
- * had 0.8 of its force while dt grew by 25 % a step (up to 7 times its floor) and 1.25-1.3
- * while it shrank back by 20 % (0.96-0.98 at a steady step). The cause: the projection's
- * leftover divergence carries about half a film's pressure to the next step, made over
- * dt_prev and removed over dt (docs/limitations.md, "The plate force moves with the step's
- * ratio to the last"). */
+ * control's and changes every step; there it grows by at most 5 % a step (it still shrinks
+ * by up to 20 %). The projection's leftover divergence carries about half a squeezed
+ * film's pressure to the next step, made over dt_prev and removed over dt, so the plate
+ * force goes partly as dt_prev / dt: a step 25 % longer takes it down 10 % at once
+ * (docs/limitations.md, "The plate force moves with the step's ratio to the last"). The
+ * limit damps that; taking the leftover at its own rate is the fix still to land. */
 #define DT_NEAR_TOL 1.05
 /* The strain by which the plastic stress may lag the rate (below). */
 #define LAG_STRAIN 0.1

@@ -114,8 +114,9 @@ T.case("Bingham square, Bn = 1000: the force's deficit is the time step's, conve
   -- 0.9739 / 0.9851 / 0.9952 at dt = 2e-6 / 1e-6 / 4e-7 when this test was written (errors
   -- 0.026 / 0.015 / 0.005: order 1.05 in dt), and since the step follows the plastic stress's
   -- lag (timestep.c, which takes the steps below 2e-6 early on) 0.9968 / 0.9986 / 1.0004
-  -- (errors 0.0032 / 0.0014 / 0.0004: order 1.29; 7.5 s in all). Bounds: the error at 4e-7 at most 0.01
-  -- (twice the measured), an order in dt of at least 0.8 from 2e-6 to 4e-7.
+  -- (errors 0.0032 / 0.0014 / 0.0004: order 1.29; 7.5 s in all). Bounds: the error at 4e-7
+  -- at most 0.01 (twice the error it had when the test was written), an order in dt of at
+  -- least 0.8 from 2e-6 to 4e-7.
   local errs, dts = {}, { 2e-6, 1e-6, 4e-7 }
   for q, dt in ipairs(dts) do
     local r = square_t0(20, 1000, { dt_max = dt, t0 = 0.002, t1 = 0.003 })
