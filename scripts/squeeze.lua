@@ -339,7 +339,7 @@ print(string.format("squeeze: mode=%s Re=%g Bn=%g M=%g dx=%g: %d fluid particles
   mode, Re, Bn, M, dx, w:stats().fluid, t_end))
 if restart then
   -- the outputs on the first run's grid (t0 = 0): the steps are that run's, bit for bit
-  print(string.format("restart: %s at t=%.6g, step %d", restart, w.t, w.steps))
+  print(string.format("restart: %s at t=%.6g, step %d", restart, w.t * S.T, w.steps))
 end
 -- w:run calls record at t = 0 too (the series' first row) but not at the start of a
 -- restart (t0 = 0 lies before it). An engine error (a particle through a plate, a NaN, a
@@ -353,7 +353,14 @@ end })
 clear_progress()
 series:close()
 local sig, signame = sph.interrupted()
-if not ok then io.stderr:write("squeeze: the run stopped early: " .. tostring(run_err) .. "\n") end
+if not ok then
+  io.stderr:write("squeeze: the run stopped early: " .. tostring(run_err) .. "\n")
+  -- the engine speaks its own units: with units=SI, say how they convert
+  if o.units == "SI" then
+    io.stderr:write(string.format("squeeze: (that message is in the engine's units: its unit of time is %g, of length %g, "
+      .. "of velocity %g, of force per unit depth %g, in the units given)\n", S.T, S.H, S.U, S.F))
+  end
+end
 -- the run ended early, or had fewer outputs than frames: show its end (once)
 if nframes > 0 and #frames < nframes and not sig and w.t > frame_t + 1e-9 * t_end then
   nframes = #frames + 1
@@ -442,7 +449,7 @@ if sig then
     args[#args + 1] = "restart=" .. state
     print(string.format("interrupted (%s) at t=%.6g, step %d: wrote %s\n"
       .. "continue with the same arguments and restart=%s:\n  %s %s %s\n"
-      .. "(or in Lua: local w = sph.load(\"%s\"))", signame, w.t, w.steps, state, state, arg[-1] or "sph",
+      .. "(or in Lua: local w = sph.load(\"%s\"))", signame, w.t * S.T, w.steps, state, state, arg[-1] or "sph",
       arg[0] or "scripts/squeeze.lua", table.concat(args, " "), state))
   else
     io.stderr:write("squeeze: interrupted, and the state could not be saved: " .. tostring(why) .. "\n")
