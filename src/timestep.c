@@ -51,10 +51,10 @@ static double plug_secant(const sph_world *w, double lo, double hi, int nvp) {
 double sph_timestep_compute(sph_world *w) {
     const sph_params *P = &w->par;
     double h = w->h, umax = 0.0, amax = 0.0, etamax = 0.0, rhomin = INFINITY, nus = 0.0;
-    double secmax = 0.0, secmin = INFINITY, gd2 = 0.0;
+    double secmax = 0.0, secmin = INFINITY, gd2 = 0.0, nuall = 0.0;
     int n = w->n, nvp = 0;
 #pragma omp parallel for schedule(static) num_threads(w->threads) \
-    reduction(max : umax, amax, etamax, nus, secmax) reduction(min : rhomin, secmin) reduction(+ : gd2, nvp)
+    reduction(max : umax, amax, etamax, nus, nuall, secmax) reduction(min : rhomin, secmin) reduction(+ : gd2, nvp)
     for (int i = 0; i < n; i++) {
         if (w->kind[i] != SPH_FLUID) continue;
         if (w->mats[w->mat[i]].model != SPH_NEWTONIAN) {
@@ -69,9 +69,10 @@ double sph_timestep_compute(sph_world *w) {
         if (a > amax) amax = a;
         if (w->visc[i] > etamax) etamax = w->visc[i];
         if (w->rho[i] < rhomin) rhomin = w->rho[i];
-        if (w->surf[i] && sph_surface_traction(w)) {
+        if (sph_surface_traction(w)) {
             double nu = w->mats[w->mat[i]].mu / w->rho[i];
-            if (nu > nus) nus = nu;
+            if (nu > nuall) nuall = nu;
+            if (w->surf[i] && nu > nus) nus = nu;
         }
     }
     umax = sqrt(umax);
@@ -113,10 +114,14 @@ double sph_timestep_compute(sph_world *w) {
      * 20 % a step), down to a twentieth of the other limits (an error that does not come
      * from dt must not stall the run). With implicit viscosity the first step, which may
      * start a plate impulsively, is that twentieth; the explicit scheme's first step is
-     * already short. */
+     * already short. The free surface is marked at the step's start, after its dt is set, so
+     * the first step is also bounded by the surface's stability limit over every particle
+     * (SPH_SURFACE_STABLE, internal.h): a twentieth of the speed limit is 250 times rho h^2 / mu
+     * on the square at Re = 1e-3, dx = 0.05, and that step put a particle through a plate. */
     double floor = 0.05 * dt;
     if (w->dt_prev <= 0) {
         if (P->viscosity == SPH_VISC_IMPLICIT) dt = floor;
+        if (nuall > 0) dt = fmin(dt, SPH_SURFACE_STABLE * h * h / nuall);
     } else if (P->density_tol > 0 && w->st.max_density_error > P->density_tol) {
         dt = fmin(dt, fmax(floor, w->dt_prev * fmax(0.8, P->density_tol / w->st.max_density_error)));
     }

@@ -97,26 +97,6 @@ static void plastic_update(sph_world *w, int i, double exx, double exy, double d
     w->visc[i] = r;
 }
 
-/* At a free-surface particle: the deviatoric rate averaged (kernel weights) over its fluid
- * neighbours off the surface. Its own rate is one-sided, and the sign of its stretching
- * flips with a particle-scale wrinkle of the surface row: at Bn = 1000 a plastic surface
- * then alternates between p = +tau0 and -tau0 from particle to particle. */
-static void surface_rate(const sph_world *w, int i, double *exx, double *exy) {
-    double s0 = 0.0, a = 0.0, b = 0.0;
-    for (int k = w->nb_start[i]; k < w->nb_mid[i]; k++) {
-        int j = w->nb_j[k], q = w->src[j];
-        if (w->surf[q]) continue;
-        double c = w->vol[j] * w->nb_w[k];
-        s0 += c;
-        a += c * 0.5 * (w->gux[q] - w->gvy[q]);
-        b += c * w->gsx[j] * w->gsy[j] * 0.5 * (w->guy[q] + w->gvx[q]);
-    }
-    if (s0 > 0) {
-        *exx = a / s0;
-        *exy = b / s0;
-    }
-}
-
 /* The unit normal of free-surface particle i (sph_boundary_moment normalised); 0 where the
  * moment vanishes. */
 static int surface_normal(const sph_world *w, int i, double *nx, double *ny) {
@@ -126,6 +106,35 @@ static int surface_normal(const sph_world *w, int i, double *nx, double *ny) {
     *nx /= nn;
     *ny /= nn;
     return 1;
+}
+
+/* At a free-surface particle: the deviatoric rate of a traction-free surface, e (t t - n n)
+ * (tau_nt = 0, and incompressible D_nn = -D_tt), with e its stretching (surface_stretching)
+ * averaged with kernel weights over itself and its free-surface neighbours. A plastic surface
+ * holds p = n . tau . n = +-tau0 by the sign of e. The stretching along the surface holds
+ * nothing of the surface particles' normal velocities, so that sign does not feed back on
+ * itself: with the normal rate of the columns inside (whose gradients hold the surface
+ * particle's velocity) the square at Bn = 1000, dx = 1/80, had two states, its free side at
+ * p = +tau0 or -tau0 by how it started (FE: +tau0), 1.006 and 0.953 of FE's force. One
+ * particle's stretching flips sign with a particle-scale wrinkle of the surface row, hence
+ * the average along it. */
+static void surface_rate(const sph_world *w, int i, double *exx, double *exy) {
+    double nx, ny;
+    if (!surface_normal(w, i, &nx, &ny)) return;
+    double gi[4] = {w->gux[i], w->guy[i], w->gvx[i], w->gvy[i]};
+    double s0 = w->vol[i] * sph_kernel_value(0.0, w->h), a = s0 * surface_stretching(w, i, gi);
+    for (int k = w->nb_start[i]; k < w->nb_mid[i]; k++) {
+        int j = w->nb_j[k], q = w->src[j];
+        if (!w->surf[q]) continue;
+        /* a mirror image's stretching is its source's (t . grad u . t is even in a reflection) */
+        double gq[4] = {w->gux[q], w->guy[q], w->gvx[q], w->gvy[q]};
+        double c = w->vol[j] * w->nb_w[k];
+        s0 += c;
+        a += c * surface_stretching(w, q, gq);
+    }
+    double e = a / s0;
+    *exx = -e * (nx * nx - ny * ny);
+    *exy = -e * 2.0 * nx * ny;
 }
 
 /* The traction-free surface has no shear stress: lam and S at a free-surface particle keep

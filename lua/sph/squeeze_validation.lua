@@ -134,7 +134,7 @@ end
 
 -- A Newtonian film: the half sample of height 1 and half-width ar (sph.squeeze.build, V = -1,
 -- rows particles across the gap), its plate force over the window t in (opts.t0, opts.t1)
--- (default 0.005, 0.01; Re = opts.Re, default 0.05; opts.world: engine options; on_world(w)).
+-- (default 0.005, 0.02; Re = opts.Re, default 0.05; opts.world: engine options; on_world(w)).
 -- The no-slip plates hold the sample's contact where it was while its free sides bulge, so
 -- the reference is the rectangle of the current gap and the current contact half-width
 -- (ratio_c: the outermost particle of the rows within dx of either plate, plus dx / 2); the
@@ -155,7 +155,7 @@ end
 
 function M.film(ar, rows, opts)
   opts = opts or {}
-  local Re, t0, t1 = opts.Re or 0.05, opts.t0 or 0.005, opts.t1 or 0.01
+  local Re, t0, t1 = opts.Re or 0.05, opts.t0 or 0.005, opts.t1 or 0.02
   local dx = 1 / rows
   local w, top = squeeze.build{ dx = dx, Re = Re, Bn = 0, mode = "velocity", V = 1, width = ar, height = 1,
                                 h_min = 0.9, world = opts.world or { threads = 1 } }
