@@ -108,7 +108,27 @@ static int surface_normal(const sph_world *w, int i, double *nx, double *ny) {
     return 1;
 }
 
-/* At a free-surface particle: the deviatoric rate of a traction-free surface, e (t t - n n)
+/* The deviatoric rate averaged (kernel weights) over the fluid neighbours of particle i off
+ * the surface: a surface particle's rate where the surface holds p = 0 (thin_film), which
+ * is not traction-free, so that the form below does not hold there (with it the Bingham
+ * thin film at dx = 1/30 came 0.7 % further from thin-film theory, 0.9658 against 0.9727). */
+static void inner_rate(const sph_world *w, int i, double *exx, double *exy) {
+    double s0 = 0.0, a = 0.0, b = 0.0;
+    for (int k = w->nb_start[i]; k < w->nb_mid[i]; k++) {
+        int j = w->nb_j[k], q = w->src[j];
+        if (w->surf[q]) continue;
+        double c = w->vol[j] * w->nb_w[k];
+        s0 += c;
+        a += c * 0.5 * (w->gux[q] - w->gvy[q]);
+        b += c * w->gsx[j] * w->gsy[j] * 0.5 * (w->guy[q] + w->gvx[q]);
+    }
+    if (s0 > 0) {
+        *exx = a / s0;
+        *exy = b / s0;
+    }
+}
+
+/* At a particle of a traction-free surface: the deviatoric rate of such a surface, e (t t - n n)
  * (tau_nt = 0, and incompressible D_nn = -D_tt), with e its stretching (surface_stretching)
  * averaged with kernel weights over itself and its free-surface neighbours. A plastic surface
  * holds p = n . tau . n = +-tau0 by the sign of e. The stretching along the surface holds
@@ -119,6 +139,10 @@ static int surface_normal(const sph_world *w, int i, double *nx, double *ny) {
  * particle's stretching flips sign with a particle-scale wrinkle of the surface row, hence
  * the average along it. */
 static void surface_rate(const sph_world *w, int i, double *exx, double *exy) {
+    if (!sph_surface_traction(w)) { /* the thin-film scheme's surface holds p = 0 */
+        inner_rate(w, i, exx, exy);
+        return;
+    }
     double nx, ny;
     if (!surface_normal(w, i, &nx, &ny)) return;
     double gi[4] = {w->gux[i], w->guy[i], w->gvx[i], w->gvy[i]};
