@@ -10,13 +10,13 @@ local T = require "sph.test"
 local square_t0 = require("sph.squeeze_validation").square_t0
 
 T.case("Newtonian square at t = 0+ against FE, converging", function()
-  -- measured (one thread): F(0+) / F_FE 0.9861 / 0.9947 / 1.0017 at dx = 1/20, 1/40, 1/80
-  -- (errors 0.0139, 0.0053, 0.0017: order 1.5), the window mean's spread 0.007-0.009,
-  -- 621 / 2522 / 10198 steps. Bounds: 0.03 at 1/20 and 1/40 (REFERENCES.md's 3 %), 0.015 at
+  -- measured (one thread): F(0+) / F_FE 0.9860 / 0.9946 / 1.0002 at dx = 1/20, 1/40, 1/80
+  -- (errors 0.0140, 0.0054, 0.0002: order 3.1), the window mean's spread 0.006-0.007,
+  -- 629 / 2550 / 10230 steps. Bounds: 0.03 at 1/20 and 1/40 (REFERENCES.md's 3 %), 0.015 at
   -- 1/80; the observed order from 1/20 to 1/80 at least 1; the spread under 0.02.
   -- The velocity carries the flow: the share of the particles' motion that the density
   -- correction made over the window (stats correction_share; 0 in the continuum) measured
-  -- 0.0094 / 0.0035 / 0.0014 (order 1.4). Bounds: 0.02 / 0.01 / 0.005, an order of at least 1.
+  -- 0.0092 / 0.0034 / 0.0012 (order 1.5). Bounds: 0.02 / 0.01 / 0.005, an order of at least 1.
   local errs, bounds, shares, sbounds = {}, { 0.03, 0.03, 0.015 }, {}, { 0.02, 0.01, 0.005 }
   for k, n in ipairs{ 20, 40, 80 } do
     local r = square_t0(n, 0)
